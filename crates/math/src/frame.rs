@@ -24,7 +24,7 @@ impl Frame {
     pub fn from_normal_tangent(n: Vec3, dpdu: Vec3) -> Frame {
         let s = dpdu - n * n.dot(dpdu);
         let len = s.length();
-        if !(len > 1e-8) || !len.is_finite() {
+        if len <= 1e-8 || !len.is_finite() {
             return Frame::from_normal(n);
         }
         let s = s / len;

@@ -11,7 +11,7 @@ pub mod sampling;
 pub mod transform;
 
 pub use frame::Frame;
-pub use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
+pub use glam::{Mat3, Mat4, Vec2, Vec3, Vec3A, Vec4};
 pub use rgb::Rgb;
 pub use rng::Pcg32;
 pub use sampler::{Sampler, SamplerKind};

@@ -1,1 +1,14 @@
+//! Rendering: geometry, acceleration, materials, lights, camera, film,
+//! image I/O and integrators.
 
+pub mod accel;
+pub mod bsdf;
+pub mod camera;
+pub mod film;
+pub mod geometry;
+pub mod image_io;
+pub mod integrator;
+pub mod light;
+pub mod load;
+pub mod material;
+pub mod scene;

@@ -1,0 +1,111 @@
+//! Command-line arguments as typed (first stage); `run.rs` turns them into settings.
+
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "lumis",
+    version,
+    about = "A physically based renderer for caustics (pbrt-v4 scenes in, HDR images out)"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a pbrt-v4 scene (the built-in default scene if none is given).
+    Render(RenderArgs),
+}
+
+#[derive(Args, Debug, Default, Clone)]
+pub struct RenderArgs {
+    /// Scene file (pbrt-v4). Without it, the built-in default scene.
+    pub scene: Option<PathBuf>,
+    /// Output image: .exr (32-bit float linear), .pfm or .png (sRGB). Without it,
+    /// `<name>.exr` and `<name>.png` in the current folder, `<name>` from the Film's filename or `lumis`.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Samples per pixel (overrides the scene's Sampler).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Wall-clock budget in seconds; stops after the last whole pass that fits.
+    #[arg(long, value_name = "SECONDS")]
+    pub time: Option<f64>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Random seed.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Integrator: path or direct (overrides the scene's).
+    #[arg(long)]
+    pub integrator: Option<String>,
+    /// Maximum path depth (overrides the scene's maxdepth).
+    #[arg(long)]
+    pub maxdepth: Option<u32>,
+    /// Film resolution WxH (overrides the scene's).
+    #[arg(long, value_name = "WxH", value_parser = parse_resolution)]
+    pub resolution: Option<(u32, u32)>,
+    /// Crop window as fractions of the image, x0,x1,y0,y1 (as pbrt's cropwindow).
+    #[arg(long, value_name = "x0,x1,y0,y1", value_parser = parse_crop)]
+    pub crop: Option<[f32; 4]>,
+    /// Exposure in stops for PNG output.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Sampler: sobol or independent (overrides the scene's).
+    #[arg(long)]
+    pub sampler: Option<String>,
+    /// Print no progress, only warnings, errors and the summary.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WxH, e.g. 640x480, found `{s}`"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad width in `{s}`"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad height in `{s}`"))?;
+    if w == 0 || h == 0 {
+        return Err("resolution must be at least 1x1".into());
+    }
+    Ok((w, h))
+}
+
+fn parse_crop(s: &str) -> Result<[f32; 4], String> {
+    let v: Result<Vec<f32>, _> = s.split(',').map(|t| t.trim().parse::<f32>()).collect();
+    let v = v.map_err(|_| format!("expected four numbers x0,x1,y0,y1, found `{s}`"))?;
+    if v.len() != 4 {
+        return Err(format!(
+            "expected four numbers x0,x1,y0,y1, found {}",
+            v.len()
+        ));
+    }
+    if v.iter().any(|x| !(0.0..=1.0).contains(x)) || v[0] >= v[1] || v[2] >= v[3] {
+        return Err("crop values are fractions in [0,1] with x0 < x1 and y0 < y1".into());
+    }
+    Ok([v[0], v[1], v[2], v[3]])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_resolution_and_crop() {
+        assert_eq!(parse_resolution("640x480"), Ok((640, 480)));
+        assert!(parse_resolution("640").is_err());
+        assert!(parse_resolution("0x5").is_err());
+        assert_eq!(parse_crop("0,0.5,0.25,1"), Ok([0.0, 0.5, 0.25, 1.0]));
+        assert!(parse_crop("0.5,0.2,0,1").is_err());
+    }
+}

@@ -1,0 +1,147 @@
+//! Arguments → overrides → load → render → write.
+
+use crate::args::{Cli, Command, RenderArgs};
+use crate::progress::Reporter;
+use anyhow::{bail, Context, Result};
+use lumis_math::SamplerKind;
+use lumis_render::image_io::{write_image, ImageFormat, RgbImage};
+use lumis_render::integrator::{render, RenderSettings};
+use lumis_render::load::{load_path, load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+use std::time::Duration;
+
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        None => render_cmd(RenderArgs::default()),
+        Some(Command::Render(a)) => render_cmd(a),
+    }
+}
+
+fn overrides(a: &RenderArgs) -> Result<BuildOverrides> {
+    let sampler = match a.sampler.as_deref() {
+        None => None,
+        Some("sobol") => Some(SamplerKind::Sobol),
+        Some("independent") => Some(SamplerKind::Independent),
+        Some(other) => bail!("unknown sampler `{other}` (available: sobol, independent)"),
+    };
+    Ok(BuildOverrides {
+        resolution: a.resolution,
+        crop: a.crop,
+        spp: a.spp,
+        integrator: a.integrator.clone(),
+        max_depth: a.maxdepth,
+        sampler,
+    })
+}
+
+/// Output files: `-o` alone, or `<stem>.exr` and `<stem>.png` in the current folder.
+fn outputs(a: &RenderArgs, film_name: Option<&str>) -> Result<Vec<PathBuf>> {
+    if let Some(o) = &a.output {
+        ImageFormat::from_path(o)?;
+        return Ok(vec![o.clone()]);
+    }
+    let stem = film_name
+        .and_then(|f| {
+            Path::new(f)
+                .file_stem()
+                .map(|s| s.to_string_lossy().to_string())
+        })
+        .unwrap_or_else(|| "lumis".to_string());
+    Ok(vec![
+        PathBuf::from(format!("{stem}.exr")),
+        PathBuf::from(format!("{stem}.png")),
+    ])
+}
+
+fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
+    if let Some(t) = a.time {
+        if !(t > 0.0 && t.is_finite()) {
+            bail!("--time must be a positive number of seconds, found {t}");
+        }
+    }
+    let ov = overrides(&a)?;
+    let loaded: LoadedScene = match &a.scene {
+        Some(p) => load_path(p, &ov),
+        None => load_text(
+            DEFAULT_SCENE,
+            "<built-in default scene>",
+            Path::new("."),
+            &ov,
+        ),
+    }
+    .map_err(|d| anyhow::anyhow!("{d}"))?;
+    for w in &loaded.warnings {
+        eprintln!("{w}");
+    }
+    let o = &loaded.options;
+    let files = outputs(&a, o.filename.as_deref())?;
+    let settings = RenderSettings {
+        spp: if a.time.is_some() && a.spp.is_none() {
+            0
+        } else {
+            o.spp
+        },
+        seed: a.seed,
+        threads: a.threads.unwrap_or(0),
+        time_limit: a.time.map(Duration::from_secs_f64),
+        sampler: o.sampler,
+        filter: o.filter.clone(),
+        crop: o.crop,
+        spp_per_pass: 1,
+    };
+    let reporter = Reporter::new(a.quiet);
+    let cancel = AtomicBool::new(false);
+    let out = render(
+        &loaded.scene,
+        &o.integrator,
+        &settings,
+        &|p| reporter.update(p),
+        &cancel,
+    );
+    reporter.finish();
+    let mut data = out.film.mean_image();
+    if o.imaging_scale != 1.0 {
+        data.iter_mut().for_each(|v| *v *= o.imaging_scale);
+    }
+    let mut img = RgbImage::new(out.film.width(), out.film.height(), data);
+    let scene_name = a
+        .scene
+        .as_ref()
+        .map(|p| p.display().to_string())
+        .unwrap_or_else(|| "<default>".into());
+    img.metadata = vec![
+        ("lumis:spp".into(), out.spp.to_string()),
+        ("lumis:integrator".into(), o.integrator.kind.name().into()),
+        ("lumis:seed".into(), a.seed.to_string()),
+        ("lumis:scene".into(), scene_name),
+        (
+            "lumis:command".into(),
+            std::env::args().collect::<Vec<_>>().join(" "),
+        ),
+    ];
+    for f in &files {
+        write_image(f, &img, a.exposure).with_context(|| format!("writing {}", f.display()))?;
+    }
+    let secs = out.elapsed.as_secs_f64();
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    eprintln!(
+        "lumis: {}x{} {} spp ({}) in {:.2} s, {:.2} Mrays/s -> {}",
+        img.width,
+        img.height,
+        out.spp,
+        o.integrator.kind.name(),
+        secs,
+        out.rays as f64 / secs.max(1e-9) / 1e6,
+        names.join(", ")
+    );
+    if out.bad_samples > 0 {
+        let (x, y) = out.first_bad_pixel.unwrap_or((0, 0));
+        eprintln!(
+            "lumis: dropped {} NaN/infinite samples (first at pixel {x},{y})",
+            out.bad_samples
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

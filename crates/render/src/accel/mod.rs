@@ -1,0 +1,4 @@
+//! Ray-scene acceleration: a binned-SAH BVH in pure Rust.
+
+pub mod bvh;
+pub use bvh::Bvh;

@@ -1,0 +1,267 @@
+//! Scattering functions in the local shading frame (normal along +z).
+//!
+//! Conventions follow pbrt-v4: `wo` and `wi` both point away from the
+//! surface, `f` excludes the cosine factor and densities are per unit solid
+//! angle. Reflection-only BSDFs are two-sided (they reflect in whichever
+//! hemisphere `wo` lies); the dielectric distinguishes outside (+z) from
+//! inside (-z).
+
+mod conductor;
+mod dielectric;
+mod diffuse;
+pub mod fresnel;
+pub mod microfacet;
+mod phong;
+
+pub use conductor::Conductor;
+pub use dielectric::Dielectric;
+pub use diffuse::Diffuse;
+pub use phong::Phong;
+
+use lumis_math::{Frame, Rgb, Vec2, Vec3};
+
+/// What a path carries: radiance (camera paths) or importance (light paths).
+/// Only refraction is not symmetric between the two (pbrt-v4 §9.5.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TransportMode {
+    Radiance,
+    Importance,
+}
+
+/// Result of [`Bsdf::sample`].
+#[derive(Clone, Copy, Debug)]
+pub struct BsdfSample {
+    /// Sampled incident direction (local frame for [`Bsdf`], world space for
+    /// [`SurfaceBsdf`]).
+    pub wi: Vec3,
+    /// BSDF value (without cosine). For delta lobes, the Fresnel-weighted
+    /// value divided by `|cos wi|`.
+    pub f: Rgb,
+    /// Solid-angle density; for delta lobes the discrete probability of the
+    /// chosen lobe.
+    pub pdf: f32,
+    /// A perfectly specular lobe was sampled.
+    pub delta: bool,
+    /// `wi` is on the other side of the surface than `wo`.
+    pub transmission: bool,
+    /// Relative IOR crossed along the sampled path (1 for reflection).
+    pub eta: f32,
+}
+
+impl BsdfSample {
+    /// Path throughput weight `f |cos wi| / pdf` (uses the local `wi.z`, so
+    /// only valid before conversion to world space).
+    pub fn weight_local(&self) -> Rgb {
+        self.f * (self.wi.z.abs() / self.pdf)
+    }
+}
+
+/// All BSDFs of lumis.
+#[derive(Clone, Copy, Debug)]
+pub enum Bsdf {
+    Diffuse(Diffuse),
+    Conductor(Conductor),
+    Dielectric(Dielectric),
+    Phong(Phong),
+}
+
+impl Bsdf {
+    /// BSDF value for the pair of local directions; 0 for delta lobes.
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        match self {
+            Bsdf::Diffuse(b) => b.eval(wo, wi),
+            Bsdf::Conductor(b) => b.eval(wo, wi),
+            Bsdf::Dielectric(b) => b.eval(wo, wi, mode),
+            Bsdf::Phong(b) => b.eval(wo, wi),
+        }
+    }
+
+    /// Solid-angle density with which [`Self::sample`] produces `wi` through
+    /// its non-delta lobes.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        let _ = mode;
+        match self {
+            Bsdf::Diffuse(b) => b.pdf(wo, wi),
+            Bsdf::Conductor(b) => b.pdf(wo, wi),
+            Bsdf::Dielectric(b) => b.pdf(wo, wi),
+            Bsdf::Phong(b) => b.pdf(wo, wi),
+        }
+    }
+
+    /// Sample an incident direction given the outgoing one. `uc` chooses
+    /// between lobes, `u` samples within a lobe.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+        match self {
+            Bsdf::Diffuse(b) => b.sample(wo, u),
+            Bsdf::Conductor(b) => b.sample(wo, u),
+            Bsdf::Dielectric(b) => b.sample(wo, uc, u, mode),
+            Bsdf::Phong(b) => b.sample(wo, uc, u),
+        }
+    }
+
+    /// Every lobe is perfectly specular: `eval` and `pdf` are always zero.
+    pub fn is_delta(&self) -> bool {
+        match self {
+            Bsdf::Diffuse(_) | Bsdf::Phong(_) => false,
+            Bsdf::Conductor(b) => b.is_delta(),
+            Bsdf::Dielectric(b) => b.is_delta(),
+        }
+    }
+
+    pub fn has_transmission(&self) -> bool {
+        matches!(self, Bsdf::Dielectric(_))
+    }
+}
+
+impl From<Diffuse> for Bsdf {
+    fn from(b: Diffuse) -> Self {
+        Bsdf::Diffuse(b)
+    }
+}
+impl From<Conductor> for Bsdf {
+    fn from(b: Conductor) -> Self {
+        Bsdf::Conductor(b)
+    }
+}
+impl From<Dielectric> for Bsdf {
+    fn from(b: Dielectric) -> Self {
+        Bsdf::Dielectric(b)
+    }
+}
+impl From<Phong> for Bsdf {
+    fn from(b: Phong) -> Self {
+        Bsdf::Phong(b)
+    }
+}
+
+/// World-space wrapper used by integrators: a BSDF in a shading frame.
+///
+/// For BSDFs without transmission, directions on opposite sides of the
+/// geometric normal `ng` never scatter (eval and pdf are 0, samples are
+/// rejected): this keeps shading normals from leaking light through opaque
+/// surfaces. Transmissive BSDFs classify reflection/transmission by the
+/// shading frame only.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceBsdf {
+    /// Shading frame.
+    pub frame: Frame,
+    /// Geometric normal, world space.
+    pub ng: Vec3,
+    pub bsdf: Bsdf,
+}
+
+impl SurfaceBsdf {
+    pub fn new(frame: Frame, ng: Vec3, bsdf: Bsdf) -> Self {
+        SurfaceBsdf { frame, ng, bsdf }
+    }
+
+    #[inline]
+    pub fn to_local(&self, v: Vec3) -> Vec3 {
+        self.frame.to_local(v)
+    }
+
+    #[inline]
+    pub fn to_world(&self, v: Vec3) -> Vec3 {
+        self.frame.to_world(v)
+    }
+
+    #[inline]
+    fn sides_allowed(&self, wo: Vec3, wi: Vec3) -> bool {
+        self.bsdf.has_transmission() || wo.dot(self.ng) * wi.dot(self.ng) > 0.0
+    }
+
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        let (wo_l, wi_l) = (self.to_local(wo), self.to_local(wi));
+        if wo_l.z == 0.0 || !self.sides_allowed(wo, wi) {
+            return Rgb::BLACK;
+        }
+        self.bsdf.eval(wo_l, wi_l, mode)
+    }
+
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        let (wo_l, wi_l) = (self.to_local(wo), self.to_local(wi));
+        if wo_l.z == 0.0 || !self.sides_allowed(wo, wi) {
+            return 0.0;
+        }
+        self.bsdf.pdf(wo_l, wi_l, mode)
+    }
+
+    /// Sample; the returned `wi` is in world space.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+        let wo_l = self.to_local(wo);
+        if wo_l.z == 0.0 {
+            return None;
+        }
+        let mut bs = self.bsdf.sample(wo_l, uc, u, mode)?;
+        if bs.f.is_black() || !(bs.pdf > 0.0) || bs.wi.z == 0.0 || !bs.f.is_finite() {
+            return None;
+        }
+        bs.wi = self.to_world(bs.wi);
+        if !self.sides_allowed(wo, bs.wi) {
+            return None;
+        }
+        Some(bs)
+    }
+
+    pub fn is_delta(&self) -> bool {
+        self.bsdf.is_delta()
+    }
+
+    pub fn has_transmission(&self) -> bool {
+        self.bsdf.has_transmission()
+    }
+}
+
+/// `a` and `b` lie strictly in the same hemisphere of the local frame.
+#[inline]
+pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}
+
+/// Mirror about the local normal.
+#[inline]
+pub(crate) fn reflect_z(w: Vec3) -> Vec3 {
+    Vec3::new(-w.x, -w.y, w.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn surface_blocks_leaks_through_opaque() {
+        // Shading normal tilted from the geometric one.
+        let ns = Vec3::new(0.5, 0.0, 1.0).normalize();
+        let ng = Vec3::Z;
+        let s = SurfaceBsdf::new(
+            Frame::from_normal(ns),
+            ng,
+            Diffuse::new(Rgb::splat(0.5)).into(),
+        );
+        let wo = Vec3::new(0.0, 0.0, 1.0);
+        // Above the shading plane but below the geometric surface.
+        let wi = Vec3::new(0.9, 0.0, -0.2).normalize();
+        assert!(s.to_local(wi).z > 0.0);
+        assert!(s.eval(wo, wi, TransportMode::Radiance).is_black());
+        assert_eq!(s.pdf(wo, wi, TransportMode::Radiance), 0.0);
+        let wi2 = Vec3::new(0.1, 0.2, 0.9).normalize();
+        let e = s.eval(wo, wi2, TransportMode::Radiance);
+        assert!((e.g - 0.5 / lumis_math::PI).abs() < 1e-6);
+    }
+
+    #[test]
+    fn surface_sample_is_world_space() {
+        let n = Vec3::new(0.0, 1.0, 0.0);
+        let s = SurfaceBsdf::new(
+            Frame::from_normal(n),
+            n,
+            Conductor::new(Rgb::splat(0.2), Rgb::splat(3.0), 0.0, 0.0).into(),
+        );
+        let wo = Vec3::new(0.6, 0.8, 0.0);
+        let bs = s
+            .sample(wo, 0.5, Vec2::new(0.3, 0.3), TransportMode::Radiance)
+            .unwrap();
+        assert!(bs.delta);
+        assert!((bs.wi - Vec3::new(-0.6, 0.8, 0.0)).length() < 1e-5);
+    }
+}

@@ -1,0 +1,135 @@
+//! Film: per-pixel running mean and variance (Welford), and pixel filters
+//! applied by importance sampling so each sample touches only its own
+//! pixel (which keeps images independent of thread count).
+
+mod filter;
+pub use filter::Filter;
+
+use lumis_math::Rgb;
+
+/// Pixel bounds `[x0, x1) x [y0, y1)` in full-film raster coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelBounds {
+    pub x0: u32,
+    pub x1: u32,
+    pub y0: u32,
+    pub y1: u32,
+}
+
+impl PixelBounds {
+    pub fn width(&self) -> u32 {
+        self.x1 - self.x0
+    }
+    pub fn height(&self) -> u32 {
+        self.y1 - self.y0
+    }
+    pub fn area(&self) -> u64 {
+        self.width() as u64 * self.height() as u64
+    }
+}
+
+/// Running statistics of one pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Pixel {
+    pub n: u64,
+    pub mean: [f64; 3],
+    pub m2: [f64; 3],
+}
+
+impl Pixel {
+    #[inline]
+    pub fn add(&mut self, c: Rgb) {
+        self.n += 1;
+        let inv = 1.0 / self.n as f64;
+        for (i, v) in [c.r, c.g, c.b].into_iter().enumerate() {
+            let v = v as f64;
+            let d = v - self.mean[i];
+            self.mean[i] += d * inv;
+            self.m2[i] += d * (v - self.mean[i]);
+        }
+    }
+
+    pub fn mean_rgb(&self) -> Rgb {
+        Rgb::new(
+            self.mean[0] as f32,
+            self.mean[1] as f32,
+            self.mean[2] as f32,
+        )
+    }
+
+    /// Variance of the pixel mean (sample variance / n).
+    pub fn variance_of_mean(&self) -> Rgb {
+        if self.n < 2 {
+            return Rgb::BLACK;
+        }
+        let d = (self.n - 1) as f64 * self.n as f64;
+        Rgb::new(
+            (self.m2[0] / d) as f32,
+            (self.m2[1] / d) as f32,
+            (self.m2[2] / d) as f32,
+        )
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Film {
+    pub full_resolution: (u32, u32),
+    pub bounds: PixelBounds,
+    pub pixels: Vec<Pixel>,
+}
+
+impl Film {
+    pub fn new(full_resolution: (u32, u32), bounds: PixelBounds) -> Film {
+        Film {
+            full_resolution,
+            bounds,
+            pixels: vec![Pixel::default(); bounds.area() as usize],
+        }
+    }
+
+    pub fn width(&self) -> u32 {
+        self.bounds.width()
+    }
+    pub fn height(&self) -> u32 {
+        self.bounds.height()
+    }
+
+    /// Mean image, row-major RGB triples.
+    pub fn mean_image(&self) -> Vec<f32> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.mean_rgb().to_array())
+            .collect()
+    }
+
+    /// Variance-of-the-mean image, row-major RGB triples.
+    pub fn variance_image(&self) -> Vec<f32> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.variance_of_mean().to_array())
+            .collect()
+    }
+
+    /// Samples in the least-sampled pixel.
+    pub fn min_samples(&self) -> u64 {
+        self.pixels.iter().map(|p| p.n).min().unwrap_or(0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welford_matches_two_pass() {
+        let vals = [1.0f32, 2.0, 4.0, 8.0, 3.0];
+        let mut p = Pixel::default();
+        for v in vals {
+            p.add(Rgb::splat(v));
+        }
+        let mean = vals.iter().sum::<f32>() / 5.0;
+        let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / 4.0;
+        assert!((p.mean_rgb().r - mean).abs() < 1e-6);
+        assert!((p.variance_of_mean().g - var / 5.0).abs() < 1e-5);
+    }
+}

@@ -1,0 +1,50 @@
+//! Rays, bounding boxes and shapes (triangle meshes, spheres, disks).
+
+pub mod aabb;
+pub mod disk;
+pub mod mesh;
+pub mod ray;
+pub mod sphere;
+pub mod triangle;
+
+pub use aabb::Aabb;
+pub use disk::Disk;
+pub use mesh::TriangleMesh;
+pub use ray::{offset_ray_origin, Ray};
+pub use sphere::Sphere;
+
+use lumis_math::{Vec2, Vec3};
+
+/// A geometric primitive: an id into the scene's vectors, never an owned copy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Prim {
+    /// Triangle `tri` of mesh `mesh`.
+    Triangle {
+        mesh: u32,
+        tri: u32,
+    },
+    Sphere(u32),
+    Disk(u32),
+}
+
+/// What an intersection routine reports before shading data is computed.
+#[derive(Clone, Copy, Debug)]
+pub struct RawHit {
+    pub t: f32,
+    /// Surface parameters: barycentrics (b1, b2) for triangles, (u, v) otherwise.
+    pub uv: Vec2,
+    pub prim_index: u32,
+}
+
+/// Full surface description at a hit point, in world space.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceGeom {
+    pub p: Vec3,
+    /// Geometric normal, oriented as the shape is (flipped by ReverseOrientation
+    /// and by handedness-swapping transforms, as in pbrt).
+    pub ng: Vec3,
+    /// Shading normal, on the same side as `ng`.
+    pub ns: Vec3,
+    pub dpdu: Vec3,
+    pub uv: Vec2,
+}

@@ -1,0 +1,63 @@
+//! Integrators: settings, per-path tracing and the shared light-sampling
+//! module; `render.rs` is the orchestration (passes, threads, budgets).
+//!
+//! To add an integrator: its tracer in a file here, a variant in
+//! [`IntegratorKind`], a branch in [`Integrator::li`], and its parameters in
+//! `load/options.rs`.
+
+pub mod direct;
+pub mod lighting;
+pub mod path;
+pub mod render;
+
+pub use render::{render, Progress, RenderOutcome, RenderSettings};
+
+use crate::geometry::Ray;
+use crate::scene::Scene;
+use lumis_math::{Rgb, Sampler};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Unbiased path tracing with NEE and MIS: the reference.
+    Path,
+    /// Direct lighting only (through specular chains): a debugging aid.
+    Direct,
+}
+
+impl IntegratorKind {
+    pub const NAMES: &'static [&'static str] = &["path", "direct"];
+
+    pub fn from_name(name: &str) -> Option<IntegratorKind> {
+        match name {
+            "path" => Some(IntegratorKind::Path),
+            "direct" => Some(IntegratorKind::Direct),
+            _ => None,
+        }
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            IntegratorKind::Path => "path",
+            IntegratorKind::Direct => "direct",
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Integrator {
+    pub kind: IntegratorKind,
+    /// pbrt-v4's meaning: the number of scattering events after the camera
+    /// ray; 0 shows emitters only, 1 adds direct lighting.
+    pub max_depth: u32,
+}
+
+impl Integrator {
+    /// Radiance along a camera ray.
+    #[inline]
+    pub fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler, rays: &mut u64) -> Rgb {
+        match self.kind {
+            IntegratorKind::Path => path::li(scene, ray, sampler, self.max_depth, rays),
+            IntegratorKind::Direct => direct::li(scene, ray, sampler, self.max_depth, rays),
+        }
+    }
+}

@@ -1,0 +1,155 @@
+//! Orchestration: passes of samples over the film, rows in parallel.
+//!
+//! Each pass adds `spp_per_pass` samples to every pixel; a pixel's samples
+//! are always added in index order by one thread, and every sample's random
+//! numbers depend only on (seed, pixel, index), so the image is bit-identical
+//! whatever the thread count.
+
+use super::Integrator;
+use crate::film::{Film, Filter, PixelBounds};
+use crate::scene::Scene;
+use lumis_math::{Sampler, SamplerKind, Vec2};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+#[derive(Clone, Debug)]
+pub struct RenderSettings {
+    /// Samples per pixel; with a time limit, the most to take (0 = unbounded).
+    pub spp: u32,
+    pub seed: u64,
+    /// Worker threads (0 = all cores).
+    pub threads: usize,
+    /// Stop after the last whole pass that fits in this wall-clock budget.
+    pub time_limit: Option<Duration>,
+    pub sampler: SamplerKind,
+    pub filter: Filter,
+    pub crop: PixelBounds,
+    pub spp_per_pass: u32,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Progress {
+    pub spp_done: u32,
+    /// Fraction of the work (samples or time budget) done, in [0, 1].
+    pub fraction: f64,
+    pub elapsed: Duration,
+}
+
+#[derive(Clone, Debug)]
+pub struct RenderOutcome {
+    pub film: Film,
+    pub spp: u32,
+    pub elapsed: Duration,
+    pub rays: u64,
+    /// Samples dropped because they were NaN or infinite.
+    pub bad_samples: u64,
+    pub first_bad_pixel: Option<(u32, u32)>,
+    pub interrupted: bool,
+}
+
+/// Renders until the sample count or time budget is reached, or `cancel` is set.
+pub fn render(
+    scene: &Scene,
+    integrator: &Integrator,
+    settings: &RenderSettings,
+    progress: &(dyn Fn(&Progress) + Sync),
+    cancel: &AtomicBool,
+) -> RenderOutcome {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .build()
+        .expect("thread pool");
+    pool.install(|| render_in_pool(scene, integrator, settings, progress, cancel))
+}
+
+fn render_in_pool(
+    scene: &Scene,
+    integrator: &Integrator,
+    settings: &RenderSettings,
+    progress: &(dyn Fn(&Progress) + Sync),
+    cancel: &AtomicBool,
+) -> RenderOutcome {
+    let start = Instant::now();
+    let cam = &scene.camera;
+    let mut film = Film::new(cam.resolution, settings.crop);
+    let width = film.width() as usize;
+    let bad = AtomicU64::new(0);
+    let first_bad = Mutex::new(None);
+    let rays = AtomicU64::new(0);
+    let per_pass = settings.spp_per_pass.max(1);
+    let mut done = 0u32;
+    let mut interrupted = false;
+    let limit = if settings.spp == 0 {
+        u32::MAX
+    } else {
+        settings.spp
+    };
+    while done < limit {
+        if cancel.load(Ordering::Relaxed) {
+            interrupted = true;
+            break;
+        }
+        let n = per_pass.min(limit - done);
+        let pass_start = Instant::now();
+        film.pixels
+            .par_chunks_mut(width.max(1))
+            .enumerate()
+            .for_each(|(row, pixels)| {
+                let py = settings.crop.y0 + row as u32;
+                let mut sampler = Sampler::new(settings.sampler, settings.seed);
+                let mut local_rays = 0u64;
+                for (col, pixel) in pixels.iter_mut().enumerate() {
+                    let px = settings.crop.x0 + col as u32;
+                    for s in done..done + n {
+                        sampler.start_pixel_sample(px, py, s);
+                        let off = settings.filter.sample(sampler.get_2d());
+                        let p_film = Vec2::new(px as f32 + 0.5, py as f32 + 0.5) + off;
+                        let ray = cam.generate_ray(p_film, sampler.get_2d());
+                        let l = integrator.li(scene, ray, &mut sampler, &mut local_rays);
+                        if l.is_finite() {
+                            pixel.add(l);
+                        } else {
+                            // Dropped, counted, and never allowed into the pixel.
+                            if bad.fetch_add(1, Ordering::Relaxed) == 0 {
+                                *first_bad.lock().unwrap() = Some((px, py));
+                            }
+                        }
+                    }
+                }
+                rays.fetch_add(local_rays, Ordering::Relaxed);
+            });
+        done += n;
+        let elapsed = start.elapsed();
+        let fraction = match settings.time_limit {
+            Some(t) if settings.spp == 0 => (elapsed.as_secs_f64() / t.as_secs_f64()).min(1.0),
+            Some(t) => (elapsed.as_secs_f64() / t.as_secs_f64())
+                .max(done as f64 / limit as f64)
+                .min(1.0),
+            None => done as f64 / limit as f64,
+        };
+        progress(&Progress {
+            spp_done: done,
+            fraction,
+            elapsed,
+        });
+        if let Some(t) = settings.time_limit {
+            // Stop when another pass of the same length would overrun the budget.
+            if elapsed + pass_start.elapsed() > t {
+                break;
+            }
+        }
+    }
+    scene.count_rays(rays.load(Ordering::Relaxed));
+    let first_bad_pixel = *first_bad.lock().unwrap();
+    RenderOutcome {
+        film,
+        spp: done,
+        elapsed: start.elapsed(),
+        rays: rays.load(Ordering::Relaxed),
+        bad_samples: bad.load(Ordering::Relaxed),
+        first_bad_pixel,
+        interrupted,
+    }
+}

@@ -1,0 +1,158 @@
+//! Light sources. Every light can be sampled from a reference point (next
+//! event estimation) and can emit rays (photon tracing), and knows its power.
+
+pub mod area;
+pub mod distant;
+pub mod infinite;
+pub mod point;
+pub mod sampler;
+pub mod shape_sample;
+pub mod spot;
+
+pub use area::AreaLight;
+pub use distant::DistantLight;
+pub use infinite::UniformInfiniteLight;
+pub use point::PointLight;
+pub use sampler::LightSampler;
+pub use spot::SpotLight;
+
+use crate::geometry::{Aabb, Ray};
+use crate::scene::Shapes;
+use lumis_math::{Rgb, Vec2, Vec3};
+
+/// A sample of incident light at a reference point.
+#[derive(Clone, Copy, Debug)]
+pub struct LiSample {
+    /// Unit direction from the reference point towards the light.
+    pub wi: Vec3,
+    pub li: Rgb,
+    /// Density per unit solid angle; 1 for delta lights.
+    pub pdf: f32,
+    /// Point on the light (for shadow rays); far away for infinite lights.
+    pub p_light: Vec3,
+    pub n_light: Vec3,
+    pub delta: bool,
+    /// The light is at infinity: the shadow ray is unbounded.
+    pub infinite: bool,
+}
+
+/// An emitted ray: what photon tracing starts from.
+#[derive(Clone, Copy, Debug)]
+pub struct LeSample {
+    pub ray: Ray,
+    /// Emitted radiance (area, infinite) or intensity (point, spot) or radiance of a distant light.
+    pub le: Rgb,
+    /// Density of the origin per unit area (1 for delta positions).
+    pub pdf_pos: f32,
+    /// Density of the direction per unit solid angle (1 for delta directions).
+    pub pdf_dir: f32,
+    /// Surface normal at the origin, or zero.
+    pub n: Vec3,
+    pub delta_pos: bool,
+    pub delta_dir: bool,
+}
+
+impl LeSample {
+    /// Flux carried by the sampled ray divided by the sample's density:
+    /// `Le |cos| / (pdf_pos pdf_dir)` (without the light-choice probability).
+    pub fn flux_weight(&self) -> Rgb {
+        let cos = if self.n == Vec3::ZERO {
+            1.0
+        } else {
+            self.n.dot(self.ray.d).abs()
+        };
+        self.le * (cos / (self.pdf_pos * self.pdf_dir))
+    }
+}
+
+#[derive(Clone, Debug)]
+pub enum Light {
+    Area(AreaLight),
+    Point(PointLight),
+    Spot(SpotLight),
+    Distant(DistantLight),
+    Infinite(UniformInfiniteLight),
+}
+
+impl Light {
+    pub fn preprocess(&mut self, scene_bounds: &Aabb) {
+        match self {
+            Light::Distant(l) => l.preprocess(scene_bounds),
+            Light::Infinite(l) => l.preprocess(scene_bounds),
+            _ => {}
+        }
+    }
+
+    pub fn is_infinite(&self) -> bool {
+        matches!(self, Light::Distant(_) | Light::Infinite(_))
+    }
+
+    /// Point, spot and distant lights: a single position or direction.
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Light::Point(_) | Light::Spot(_) | Light::Distant(_))
+    }
+
+    pub fn sample_li(&self, shapes: &Shapes, p_ref: Vec3, u: Vec2) -> Option<LiSample> {
+        match self {
+            Light::Area(l) => l.sample_li(shapes, p_ref, u),
+            Light::Point(l) => l.sample_li(p_ref),
+            Light::Spot(l) => l.sample_li(p_ref),
+            Light::Distant(l) => l.sample_li(p_ref),
+            Light::Infinite(l) => l.sample_li(p_ref, u),
+        }
+    }
+
+    /// Solid-angle density with which `sample_li` from `p_ref` returns the
+    /// light point `p_light` (normal `n_light`) in direction `wi`.
+    pub fn pdf_li(
+        &self,
+        shapes: &Shapes,
+        p_ref: Vec3,
+        wi: Vec3,
+        p_light: Vec3,
+        n_light: Vec3,
+    ) -> f32 {
+        match self {
+            Light::Area(l) => l.pdf_li(shapes, p_ref, p_light, n_light),
+            Light::Infinite(l) => l.pdf_li(wi),
+            _ => 0.0,
+        }
+    }
+
+    /// Radiance leaving an area light at a point with normal `n` in direction `w`.
+    pub fn l(&self, n: Vec3, w: Vec3) -> Rgb {
+        match self {
+            Light::Area(l) => l.l(n, w),
+            _ => Rgb::BLACK,
+        }
+    }
+
+    /// Radiance arriving along an escaped ray with direction `d` (infinite lights).
+    pub fn le(&self, d: Vec3) -> Rgb {
+        match self {
+            Light::Infinite(l) => l.le(d),
+            _ => Rgb::BLACK,
+        }
+    }
+
+    pub fn sample_le(&self, shapes: &Shapes, u1: Vec2, u2: Vec2) -> Option<LeSample> {
+        match self {
+            Light::Area(l) => l.sample_le(shapes, u1, u2),
+            Light::Point(l) => l.sample_le(u1),
+            Light::Spot(l) => l.sample_le(u1),
+            Light::Distant(l) => l.sample_le(u1),
+            Light::Infinite(l) => l.sample_le(u1, u2),
+        }
+    }
+
+    /// Total emitted power (flux), RGB.
+    pub fn power(&self, shapes: &Shapes) -> Rgb {
+        match self {
+            Light::Area(l) => l.power(shapes),
+            Light::Point(l) => l.power(),
+            Light::Spot(l) => l.power(),
+            Light::Distant(l) => l.power(),
+            Light::Infinite(l) => l.power(),
+        }
+    }
+}

@@ -1,0 +1,157 @@
+//! `LightSource` directives: point, spot, distant, infinite (constant).
+
+use super::spectrum::rgb_param;
+use super::Warnings;
+use crate::light::*;
+use lumis_math::{Frame, Rgb, Vec3, PI};
+use lumis_scene::{Diagnostic, SceneDesc};
+
+pub fn build_lights(
+    desc: &SceneDesc,
+    lights: &mut Vec<Light>,
+    w: &mut Warnings,
+) -> Result<(), Diagnostic> {
+    for ld in &desc.lights {
+        let e = &ld.entity;
+        let p = &e.params;
+        let xf = ld.light_to_world;
+        let scale = p.get_float("scale", 1.0)?;
+        let light = match e.ty.as_str() {
+            "point" => {
+                let mut i = rgb_param(desc, p, "I")?.unwrap_or(Rgb::WHITE) * scale;
+                if p.has("power") {
+                    let k = 4.0 * PI * i.luminance();
+                    if k > 0.0 {
+                        i *= p.get_float("power", 0.0)? / k;
+                    }
+                }
+                let from = p.get_point3("from", Vec3::ZERO)?;
+                w.unused(p, "light \"point\"", &["I", "scale", "power", "from"]);
+                Light::Point(PointLight {
+                    pos: xf.point(from),
+                    intensity: i,
+                })
+            }
+            "spot" => {
+                let i = rgb_param(desc, p, "I")?.unwrap_or(Rgb::WHITE) * scale;
+                let from = p.get_point3("from", Vec3::ZERO)?;
+                let to = p.get_point3("to", Vec3::Z)?;
+                let cone = p.get_float("coneangle", 30.0)?;
+                let delta = p.get_float("conedelta", 5.0)?;
+                let dir = xf.vector(to - from).normalize_or_zero();
+                if dir == Vec3::ZERO {
+                    return Err(Diagnostic::error(
+                        &e.loc,
+                        "spot light `from` and `to` coincide",
+                    ));
+                }
+                let mut l = SpotLight {
+                    pos: xf.point(from),
+                    frame: Frame::from_normal(dir),
+                    intensity: i,
+                    cos_falloff_end: cone.to_radians().cos(),
+                    cos_falloff_start: (cone - delta).to_radians().cos(),
+                };
+                if p.has("power") {
+                    let k = l.power().luminance();
+                    if k > 0.0 {
+                        l.intensity *= p.get_float("power", 0.0)? / k;
+                    }
+                }
+                w.unused(
+                    p,
+                    "light \"spot\"",
+                    &[
+                        "I",
+                        "scale",
+                        "power",
+                        "from",
+                        "to",
+                        "coneangle",
+                        "conedelta",
+                    ],
+                );
+                Light::Spot(l)
+            }
+            "distant" => {
+                let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
+                let from = p.get_point3("from", Vec3::ZERO)?;
+                let to = p.get_point3("to", Vec3::Z)?;
+                let dir = xf.vector(from - to).normalize_or_zero();
+                if dir == Vec3::ZERO {
+                    return Err(Diagnostic::error(
+                        &e.loc,
+                        "distant light `from` and `to` coincide",
+                    ));
+                }
+                if p.has("illuminance") {
+                    let k = l.luminance();
+                    if k > 0.0 {
+                        l *= p.get_float("illuminance", 0.0)? / k;
+                    }
+                }
+                w.unused(
+                    p,
+                    "light \"distant\"",
+                    &["L", "scale", "from", "to", "illuminance"],
+                );
+                Light::Distant(DistantLight {
+                    w_light: dir,
+                    l,
+                    scene_center: Vec3::ZERO,
+                    scene_radius: 1.0,
+                })
+            }
+            "infinite" => {
+                if p.has("filename") {
+                    p.mark_used("filename");
+                    for q in p.unused() {
+                        q.mark_used();
+                    }
+                    w.push(Diagnostic::warning(
+                        &e.loc,
+                        "image-based infinite lights are not supported yet; light skipped",
+                    ));
+                    continue;
+                }
+                let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
+                if p.has("illuminance") {
+                    // Illuminance of a constant environment on an upward surface is pi * L.
+                    let k = PI * l.luminance();
+                    if k > 0.0 {
+                        l *= p.get_float("illuminance", 0.0)? / k;
+                    }
+                }
+                if p.has("portal") {
+                    p.mark_used("portal");
+                    w.push(Diagnostic::warning(
+                        &p.loc_of("portal").unwrap(),
+                        "infinite light portals are not supported; ignored",
+                    ));
+                }
+                w.unused(
+                    p,
+                    "light \"infinite\"",
+                    &["L", "scale", "illuminance", "filename", "portal"],
+                );
+                Light::Infinite(UniformInfiniteLight {
+                    l,
+                    scene_center: Vec3::ZERO,
+                    scene_radius: 1.0,
+                })
+            }
+            other => {
+                for q in p.unused() {
+                    q.mark_used();
+                }
+                w.push(Diagnostic::warning(
+                    &e.loc,
+                    format!("light `{other}` is not supported yet; skipped"),
+                ));
+                continue;
+            }
+        };
+        lights.push(light);
+    }
+    Ok(())
+}

@@ -1,0 +1,109 @@
+//! Second stage of input: the plain [`SceneDesc`] from `lumis-scene` becomes
+//! checked runtime objects. Unknown parameters become warnings with their
+//! locations; unsupported types are warnings too, never silently ignored.
+
+mod lights;
+mod materials;
+pub mod options;
+mod shapes;
+mod spectrum;
+
+pub use options::RenderOptions;
+
+use crate::scene::{Scene, Shapes};
+use lumis_math::SamplerKind;
+use lumis_scene::{Diagnostic, SceneDesc};
+use std::path::Path;
+
+/// A scene ready to render, its options from the file, and the warnings.
+pub struct LoadedScene {
+    pub scene: Scene,
+    pub options: RenderOptions,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Collects warnings during the build.
+#[derive(Default)]
+pub struct Warnings(pub Vec<Diagnostic>);
+
+impl Warnings {
+    pub fn push(&mut self, d: Diagnostic) {
+        self.0.push(d);
+    }
+    pub fn unused(&mut self, params: &lumis_scene::ParamSet, context: &str, known: &[&str]) {
+        self.0.extend(params.report_unused(context, known));
+    }
+}
+
+/// Values that win over the scene file's (the command line's).
+#[derive(Clone, Debug, Default)]
+pub struct BuildOverrides {
+    pub resolution: Option<(u32, u32)>,
+    /// Crop window as fractions x0, x1, y0, y1.
+    pub crop: Option<[f32; 4]>,
+    pub spp: Option<u32>,
+    pub integrator: Option<String>,
+    pub max_depth: Option<u32>,
+    pub sampler: Option<SamplerKind>,
+}
+
+/// The built-in default scene (also shipped as `scenes/default.pbrt`).
+pub const DEFAULT_SCENE: &str = include_str!("../../../../scenes/default.pbrt");
+
+/// Parses and builds a scene file.
+pub fn load_path(path: &Path, ov: &BuildOverrides) -> Result<LoadedScene, Diagnostic> {
+    let desc = lumis_scene::load_file(path)?;
+    build_scene(&desc, ov)
+}
+
+/// Parses and builds scene text (`name` labels diagnostics; paths resolve against `base_dir`).
+pub fn load_text(
+    text: &str,
+    name: &str,
+    base_dir: &Path,
+    ov: &BuildOverrides,
+) -> Result<LoadedScene, Diagnostic> {
+    let desc = lumis_scene::load_str(text, name, base_dir)?;
+    build_scene(&desc, ov)
+}
+
+pub fn build_scene(
+    desc: &SceneDesc,
+    overrides: &BuildOverrides,
+) -> Result<LoadedScene, Diagnostic> {
+    let mut w = Warnings(desc.warnings.clone());
+    if !desc.saw_world_begin {
+        return Err(Diagnostic::plain_error("the scene has no `WorldBegin`: nothing to render")
+            .with_help("pbrt-v4 scenes put camera and film options first, then `WorldBegin`, then shapes and lights"));
+    }
+    let options = options::build_options(desc, overrides, &mut w)?;
+    let camera = options::build_camera(desc, &options, &mut w)?;
+    let materials = materials::build_materials(desc, &mut w)?;
+    let mut shapes = Shapes::default();
+    let mut lights = Vec::new();
+    let prims = shapes::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
+    lights::build_lights(desc, &mut lights, &mut w)?;
+    if lights.is_empty() {
+        w.push(
+            Diagnostic::plain_error("the scene has no lights: the image will be black")
+                .into_warning(),
+        );
+    }
+    let scene = Scene::new(shapes, prims, materials.materials, lights, camera);
+    Ok(LoadedScene {
+        scene,
+        options,
+        warnings: w.0,
+    })
+}
+
+trait IntoWarning {
+    fn into_warning(self) -> Diagnostic;
+}
+
+impl IntoWarning for Diagnostic {
+    fn into_warning(mut self) -> Diagnostic {
+        self.severity = lumis_scene::Severity::Warning;
+        self
+    }
+}

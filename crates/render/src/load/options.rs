@@ -1,0 +1,340 @@
+//! Camera, film, sampler, pixel filter and integrator options.
+
+use super::Warnings;
+use crate::camera::Camera;
+use crate::film::{Filter, PixelBounds};
+use crate::integrator::{Integrator, IntegratorKind};
+use lumis_math::{SamplerKind, Transform, Vec2};
+use lumis_scene::{Diagnostic, Entity, Loc, SceneDesc};
+
+/// Everything the scene file says about how to render it.
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    pub resolution: (u32, u32),
+    pub crop: PixelBounds,
+    pub spp: u32,
+    pub sampler: SamplerKind,
+    pub filter: Filter,
+    pub integrator: Integrator,
+    /// The integrator's own parameters, for integrators with more settings.
+    pub integrator_entity: Option<Entity>,
+    /// Output file name from the Film, if any.
+    pub filename: Option<String>,
+    /// Film sensor scale: `iso / 100 * exposuretime` (pbrt-v4's imaging ratio).
+    pub imaging_scale: f32,
+}
+
+/// Refuses absurd film sizes before anything is allocated.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
+pub fn check_resolution(res: (u32, u32), loc: &Loc) -> Result<(), Diagnostic> {
+    if res.0 == 0 || res.1 == 0 || res.0 as u64 * res.1 as u64 > MAX_PIXELS {
+        return Err(Diagnostic::error(
+            loc,
+            format!(
+                "film resolution {}x{} is out of range (at least 1x1, at most {} pixels)",
+                res.0, res.1, MAX_PIXELS
+            ),
+        ));
+    }
+    Ok(())
+}
+
+pub fn build_options(
+    desc: &SceneDesc,
+    ov: &super::BuildOverrides,
+    w: &mut Warnings,
+) -> Result<RenderOptions, Diagnostic> {
+    let mut resolution = (1280u32, 720u32);
+    let mut crop = [0.0f32, 1.0, 0.0, 1.0];
+    let mut filename = None;
+    let mut imaging_scale = 1.0;
+    let mut film_loc = Loc::none();
+    if let Some(f) = &desc.film {
+        film_loc = f.loc.clone();
+        if !matches!(f.ty.as_str(), "rgb") {
+            w.push(Diagnostic::warning(
+                &f.loc,
+                format!("film type `{}` is not supported yet; using `rgb`", f.ty),
+            ));
+        }
+        let p = &f.params;
+        let xr = p.get_int("xresolution", 1280)?;
+        let yr = p.get_int("yresolution", 720)?;
+        if xr <= 0 || yr <= 0 {
+            return Err(Diagnostic::error(
+                &f.loc,
+                format!("film resolution {xr}x{yr} must be positive"),
+            ));
+        }
+        resolution = (xr as u32, yr as u32);
+        if let Some(c) = p.get_floats("cropwindow")? {
+            if c.len() != 4 {
+                return Err(Diagnostic::error(
+                    &p.loc_of("cropwindow").unwrap(),
+                    "cropwindow needs 4 values: x0 x1 y0 y1",
+                ));
+            }
+            crop = [
+                c[0].clamp(0.0, 1.0),
+                c[1].clamp(0.0, 1.0),
+                c[2].clamp(0.0, 1.0),
+                c[3].clamp(0.0, 1.0),
+            ];
+        }
+        filename = p.get_opt_string("filename")?;
+        let iso = p.get_float("iso", 100.0)?;
+        let exposure = p.get_float("exposuretime", 1.0)?;
+        imaging_scale = iso / 100.0 * exposure;
+        for ignored in [
+            "sensor",
+            "whitebalance",
+            "savefp16",
+            "diagonal",
+            "maxcomponentvalue",
+        ] {
+            if p.has(ignored) {
+                p.mark_used(ignored);
+                w.push(Diagnostic::warning(
+                    &p.loc_of(ignored).unwrap(),
+                    format!("film parameter `{ignored}` is not supported yet; ignored"),
+                ));
+            }
+        }
+        w.unused(
+            p,
+            "film \"rgb\"",
+            &[
+                "xresolution",
+                "yresolution",
+                "cropwindow",
+                "filename",
+                "iso",
+                "exposuretime",
+            ],
+        );
+    }
+    if let Some(r) = ov.resolution {
+        resolution = r;
+    }
+    if let Some(c) = ov.crop {
+        crop = c;
+    }
+    check_resolution(resolution, &film_loc)?;
+    let crop = crop_bounds(resolution, crop);
+    if crop.area() == 0 {
+        return Err(Diagnostic::error(
+            &film_loc,
+            "the crop window covers no pixel",
+        ));
+    }
+
+    let (mut spp, mut sampler) = (16u32, SamplerKind::Sobol);
+    if let Some(s) = &desc.sampler {
+        spp = s.params.get_int("pixelsamples", 16)?.max(1) as u32;
+        s.params.mark_used("seed");
+        sampler = match s.ty.as_str() {
+            "independent" => SamplerKind::Independent,
+            "sobol" | "zsobol" | "paddedsobol" => SamplerKind::Sobol,
+            other => {
+                w.push(Diagnostic::warning(
+                    &s.loc,
+                    format!("sampler `{other}` is not available; using Owen-scrambled Sobol"),
+                ));
+                for p in ["randomization", "jitter", "xsamples", "ysamples"] {
+                    s.params.mark_used(p);
+                }
+                SamplerKind::Sobol
+            }
+        };
+        w.unused(
+            &s.params,
+            &format!("sampler \"{}\"", s.ty),
+            &["pixelsamples", "seed", "randomization"],
+        );
+    }
+
+    if let Some(n) = ov.spp {
+        spp = n.max(1);
+    }
+    if let Some(k) = ov.sampler {
+        sampler = k;
+    }
+    let filter = match &desc.filter {
+        None => Filter::gaussian(Vec2::splat(1.5), 0.5),
+        Some(f) => build_filter(f, w)?,
+    };
+
+    let mut integrator = Integrator {
+        kind: IntegratorKind::Path,
+        max_depth: 5,
+    };
+    if let Some(e) = &desc.integrator {
+        integrator.max_depth = e.params.get_int("maxdepth", 5)?.max(0) as u32;
+        match IntegratorKind::from_name(&e.ty) {
+            Some(k) => integrator.kind = k,
+            None => {
+                let note = match e.ty.as_str() {
+                    "volpath" => "volumes are not rendered yet",
+                    "bdpt" | "mlt" | "sppm" | "lightpath" => "it is not implemented",
+                    _ => "it is not a lumis integrator",
+                };
+                w.push(Diagnostic::warning(
+                    &e.loc,
+                    format!(
+                        "integrator `{}` is not available ({note}); using `path`",
+                        e.ty
+                    ),
+                ));
+                e.params.mark_used("regularize");
+                for p in e.params.unused() {
+                    p.mark_used();
+                }
+            }
+        }
+        for ignored in ["lightsampler", "regularize"] {
+            e.params.mark_used(ignored);
+        }
+        w.unused(
+            &e.params,
+            &format!("integrator \"{}\"", e.ty),
+            &["maxdepth"],
+        );
+    }
+    if let Some(name) = &ov.integrator {
+        integrator.kind = IntegratorKind::from_name(name).ok_or_else(|| {
+            Diagnostic::plain_error(format!("unknown integrator `{name}`"))
+                .with_help(format!("available: {}", IntegratorKind::NAMES.join(", ")))
+        })?;
+    }
+    if let Some(d) = ov.max_depth {
+        integrator.max_depth = d;
+    }
+    Ok(RenderOptions {
+        resolution,
+        crop,
+        spp,
+        sampler,
+        filter,
+        integrator,
+        integrator_entity: desc.integrator.clone(),
+        filename,
+        imaging_scale,
+    })
+}
+
+/// pbrt's crop window (fractions) to pixel bounds.
+pub fn crop_bounds(res: (u32, u32), c: [f32; 4]) -> PixelBounds {
+    let f = |v: f32, n: u32| ((v * n as f32).ceil() as u32).min(n);
+    PixelBounds {
+        x0: f(c[0], res.0),
+        x1: f(c[1], res.0),
+        y0: f(c[2], res.1),
+        y1: f(c[3], res.1),
+    }
+}
+
+fn build_filter(f: &Entity, w: &mut Warnings) -> Result<Filter, Diagnostic> {
+    let p = &f.params;
+    let radius = |d: f32| -> Result<Vec2, Diagnostic> {
+        Ok(Vec2::new(
+            p.get_float("xradius", d)?,
+            p.get_float("yradius", d)?,
+        ))
+    };
+    let filter = match f.ty.as_str() {
+        "box" => Filter::boxf(radius(0.5)?),
+        "triangle" => Filter::triangle(radius(2.0)?),
+        "gaussian" => {
+            let r = radius(1.5)?;
+            Filter::gaussian(r, p.get_float("sigma", 0.5)?)
+        }
+        other => {
+            for q in ["xradius", "yradius", "B", "C", "tau"] {
+                p.mark_used(q);
+            }
+            w.push(Diagnostic::warning(
+                &f.loc,
+                format!("pixel filter `{other}` is not available (negative lobes); using gaussian"),
+            ));
+            Filter::gaussian(Vec2::splat(1.5), 0.5)
+        }
+    };
+    if !(filter.radius.x > 0.0 && filter.radius.y > 0.0) {
+        return Err(Diagnostic::error(&f.loc, "filter radius must be positive"));
+    }
+    w.unused(
+        p,
+        &format!("filter \"{}\"", f.ty),
+        &["xradius", "yradius", "sigma"],
+    );
+    Ok(filter)
+}
+
+pub fn build_camera(
+    desc: &SceneDesc,
+    o: &RenderOptions,
+    w: &mut Warnings,
+) -> Result<Camera, Diagnostic> {
+    let Some(c) = &desc.camera else {
+        w.push(Diagnostic::plain_error("no `Camera` in the scene; using a perspective camera at the origin looking down +z").into_warning());
+        return Ok(Camera::perspective(
+            Transform::IDENTITY,
+            o.resolution,
+            90.0,
+            0.0,
+            1e6,
+        ));
+    };
+    let world_from_camera = c.camera_from_world.inverse();
+    let p = &c.entity.params;
+    if c.entity.ty != "perspective" {
+        w.push(Diagnostic::warning(
+            &c.entity.loc,
+            format!(
+                "camera `{}` is not supported yet; using perspective",
+                c.entity.ty
+            ),
+        ));
+    }
+    let fov = p.get_float("fov", 90.0)?;
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(Diagnostic::error(
+            &p.loc_of("fov").unwrap_or(c.entity.loc.clone()),
+            format!("fov {fov} must be between 0 and 180 degrees"),
+        ));
+    }
+    let lens = p.get_float("lensradius", 0.0)?;
+    let focal = p.get_float("focaldistance", 1e6)?;
+    let mut cam = Camera::perspective(world_from_camera, o.resolution, fov, lens, focal);
+    if let Some(sw) = p.get_floats("screenwindow")? {
+        if sw.len() == 4 {
+            cam.screen = [sw[0], sw[1], sw[2], sw[3]];
+        }
+    }
+    if p.has("frameaspectratio") {
+        let fa = p.get_float("frameaspectratio", 1.0)?;
+        cam.screen = if fa > 1.0 {
+            [-fa, fa, -1.0, 1.0]
+        } else {
+            [-1.0, 1.0, -1.0 / fa, 1.0 / fa]
+        };
+    }
+    for q in ["shutteropen", "shutterclose"] {
+        p.mark_used(q);
+    }
+    w.unused(
+        p,
+        "camera \"perspective\"",
+        &[
+            "fov",
+            "lensradius",
+            "focaldistance",
+            "screenwindow",
+            "frameaspectratio",
+        ],
+    );
+    Ok(cam)
+}
+
+use super::IntoWarning;

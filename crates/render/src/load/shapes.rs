@@ -1,0 +1,304 @@
+//! Shapes (trianglemesh, plymesh, sphere, disk) and their area lights.
+
+use super::materials::BuiltMaterials;
+use super::spectrum::rgb_param;
+use super::Warnings;
+use crate::geometry::{Disk, Prim, Sphere, TriangleMesh};
+use crate::light::{AreaLight, Light};
+use crate::scene::{PrimInfo, Shapes, NO_LIGHT};
+use lumis_math::{Rgb, Vec2, Vec3, PI};
+use lumis_scene::{Diagnostic, Entity, SceneDesc, ShapeDesc};
+
+pub fn build_shapes(
+    desc: &SceneDesc,
+    mats: &BuiltMaterials,
+    shapes: &mut Shapes,
+    lights: &mut Vec<Light>,
+    w: &mut Warnings,
+) -> Result<Vec<PrimInfo>, Diagnostic> {
+    // Material indices follow the description's order; named ones resolve here.
+    let mut prims = Vec::new();
+    for s in &desc.shapes {
+        let material = match desc.material(&s.material)? {
+            None => mats.default,
+            Some(m) => desc
+                .materials
+                .iter()
+                .position(|x| std::ptr::eq(x, m))
+                .map(|i| i as u32)
+                .unwrap_or(mats.default),
+        };
+        let new_prims = build_shape(desc, s, shapes, w)?;
+        if new_prims.is_empty() {
+            continue;
+        }
+        let first_light = lights.len() as u32;
+        if let Some(al) = &s.area_light {
+            let total_area: f32 = new_prims.iter().map(|&p| shapes.area(p)).sum();
+            if let Some((lemit, two_sided)) = area_emission(desc, al, total_area, w)? {
+                for &p in &new_prims {
+                    lights.push(Light::Area(AreaLight {
+                        prim: p,
+                        lemit,
+                        two_sided,
+                    }));
+                }
+            }
+        }
+        let has_light = lights.len() as u32 > first_light;
+        for (i, &p) in new_prims.iter().enumerate() {
+            let light = if has_light {
+                first_light + i as u32
+            } else {
+                NO_LIGHT
+            };
+            prims.push(PrimInfo {
+                prim: p,
+                material,
+                light,
+            });
+        }
+    }
+    Ok(prims)
+}
+
+/// Emitted radiance and sidedness of a `diffuse` area light over a shape of `area`.
+fn area_emission(
+    desc: &SceneDesc,
+    al: &Entity,
+    area: f32,
+    w: &mut Warnings,
+) -> Result<Option<(Rgb, bool)>, Diagnostic> {
+    let p = &al.params;
+    if al.ty != "diffuse" {
+        w.push(Diagnostic::warning(
+            &al.loc,
+            format!(
+                "area light `{}` is not supported; the shape does not emit",
+                al.ty
+            ),
+        ));
+        return Ok(None);
+    }
+    let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE);
+    let scale = p.get_float("scale", 1.0)?;
+    let two_sided = p.get_bool("twosided", false)?;
+    l *= scale;
+    if p.has("power") {
+        let power = p.get_float("power", 0.0)?;
+        let k_e = l.luminance() * PI * if two_sided { 2.0 } else { 1.0 } * area;
+        if k_e > 0.0 {
+            l *= power / k_e;
+        }
+    }
+    if p.has("filename") {
+        p.mark_used("filename");
+        w.push(Diagnostic::warning(
+            &p.loc_of("filename").unwrap(),
+            "image area lights are not supported yet; using `L`",
+        ));
+    }
+    w.unused(
+        p,
+        "area light \"diffuse\"",
+        &["L", "scale", "twosided", "power"],
+    );
+    Ok(Some((l, two_sided)))
+}
+
+/// Converts one shape into primitives (several for meshes).
+fn build_shape(
+    desc: &SceneDesc,
+    s: &ShapeDesc,
+    shapes: &mut Shapes,
+    w: &mut Warnings,
+) -> Result<Vec<Prim>, Diagnostic> {
+    let e = &s.entity;
+    let p = &e.params;
+    for q in ["alpha", "emissionfilename"] {
+        if p.has(q) {
+            p.mark_used(q);
+            w.push(Diagnostic::warning(
+                &p.loc_of(q).unwrap(),
+                format!("shape parameter `{q}` is not supported yet; ignored"),
+            ));
+        }
+    }
+    let xf = s.object_to_world;
+    let flip = s.reverse_orientation ^ xf.swaps_handedness();
+    let prims = match e.ty.as_str() {
+        "trianglemesh" => {
+            let pos = p
+                .get_point3s("P")?
+                .ok_or_else(|| Diagnostic::error(&e.loc, "trianglemesh needs \"point3 P\""))?;
+            let indices = match p.get_ints("indices")? {
+                Some(i) => i,
+                None if pos.len() == 3 => vec![0, 1, 2],
+                None => return Err(Diagnostic::error(
+                    &e.loc,
+                    "trianglemesh needs \"integer indices\" (only a single triangle may omit them)",
+                )),
+            };
+            let normals = p.get_normals("N")?;
+            let uvs = p.get_point2s("uv")?;
+            p.mark_used("S");
+            p.mark_used("faceIndices");
+            w.unused(
+                p,
+                "shape \"trianglemesh\"",
+                &["P", "indices", "N", "uv", "S", "faceIndices"],
+            );
+            let mesh = make_mesh(e, pos, normals, uvs, indices, &xf, flip)?;
+            push_mesh(shapes, mesh)
+        }
+        "plymesh" => {
+            let file = p.get_string("filename", "")?;
+            if file.is_empty() {
+                return Err(Diagnostic::error(
+                    &e.loc,
+                    "plymesh needs \"string filename\"",
+                ));
+            }
+            let path = desc.resolve_path(&file);
+            let loc = p.loc_of("filename").unwrap_or(e.loc.clone());
+            let ply = lumis_scene::ply::read_ply(&path)
+                .map_err(|err| Diagnostic::error(&loc, format!("{err}")))?;
+            for q in ["displacement", "edgelength"] {
+                if p.has(q) {
+                    p.mark_used(q);
+                    w.push(Diagnostic::warning(
+                        &p.loc_of(q).unwrap(),
+                        format!("plymesh `{q}` is not supported yet; ignored"),
+                    ));
+                }
+            }
+            w.unused(p, "shape \"plymesh\"", &["filename"]);
+            let indices = ply.indices.iter().map(|&i| i as i32).collect();
+            let mesh = make_mesh(e, ply.positions, ply.normals, ply.uvs, indices, &xf, flip)?;
+            push_mesh(shapes, mesh)
+        }
+        "sphere" => {
+            let radius = p.get_float("radius", 1.0)?;
+            let partial = p.get_float("zmin", -radius)? > -radius
+                || p.get_float("zmax", radius)? < radius
+                || p.get_float("phimax", 360.0)? < 360.0;
+            if partial {
+                w.push(Diagnostic::warning(&e.loc, "partial spheres (zmin/zmax/phimax) are not supported yet; rendering the full sphere"));
+            }
+            w.unused(p, "shape \"sphere\"", &["radius", "zmin", "zmax", "phimax"]);
+            if !(radius > 0.0) {
+                return Err(Diagnostic::error(
+                    &p.loc_of("radius").unwrap_or(e.loc.clone()),
+                    "sphere radius must be positive",
+                ));
+            }
+            let i = shapes.spheres.len() as u32;
+            shapes
+                .spheres
+                .push(Sphere::new(xf, radius, s.reverse_orientation));
+            vec![Prim::Sphere(i)]
+        }
+        "disk" => {
+            let height = p.get_float("height", 0.0)?;
+            let radius = p.get_float("radius", 1.0)?;
+            let inner = p.get_float("innerradius", 0.0)?;
+            if p.get_float("phimax", 360.0)? < 360.0 {
+                w.push(Diagnostic::warning(
+                    &e.loc,
+                    "partial disks (phimax) are not supported yet; rendering the full disk",
+                ));
+            }
+            w.unused(
+                p,
+                "shape \"disk\"",
+                &["height", "radius", "innerradius", "phimax"],
+            );
+            if !(radius > 0.0) || !(inner >= 0.0 && inner < radius) {
+                return Err(Diagnostic::error(
+                    &e.loc,
+                    "disk needs radius > innerradius >= 0",
+                ));
+            }
+            let i = shapes.disks.len() as u32;
+            shapes
+                .disks
+                .push(Disk::new(xf, height, radius, inner, s.reverse_orientation));
+            vec![Prim::Disk(i)]
+        }
+        other => {
+            for q in p.unused() {
+                q.mark_used();
+            }
+            w.push(Diagnostic::warning(
+                &e.loc,
+                format!("shape `{other}` is not supported yet; skipped"),
+            ));
+            Vec::new()
+        }
+    };
+    Ok(prims)
+}
+
+fn make_mesh(
+    e: &Entity,
+    pos: Vec<Vec3>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+    indices: Vec<i32>,
+    xf: &lumis_math::Transform,
+    flip: bool,
+) -> Result<TriangleMesh, Diagnostic> {
+    if indices.len() % 3 != 0 {
+        return Err(Diagnostic::error(
+            &e.loc,
+            format!("{} indices is not a multiple of 3", indices.len()),
+        ));
+    }
+    if let Some(&bad) = indices.iter().find(|&&i| i < 0 || i as usize >= pos.len()) {
+        return Err(Diagnostic::error(
+            &e.loc,
+            format!(
+                "vertex index {bad} is out of range (the mesh has {} vertices)",
+                pos.len()
+            ),
+        ));
+    }
+    if let Some(n) = &normals {
+        if n.len() != pos.len() {
+            return Err(Diagnostic::error(
+                &e.loc,
+                format!("{} normals for {} vertices", n.len(), pos.len()),
+            ));
+        }
+    }
+    if let Some(uv) = &uvs {
+        if uv.len() != pos.len() {
+            return Err(Diagnostic::error(
+                &e.loc,
+                format!("{} uvs for {} vertices", uv.len(), pos.len()),
+            ));
+        }
+    }
+    Ok(TriangleMesh {
+        positions: pos.iter().map(|&v| xf.point(v)).collect(),
+        normals: normals.map(|n| {
+            n.iter()
+                .map(|&v| xf.normal(v).normalize_or_zero())
+                .collect()
+        }),
+        uvs,
+        indices: indices.iter().map(|&i| i as u32).collect(),
+        flip_normals: flip,
+    })
+}
+
+/// Adds a mesh; degenerate (zero-area) triangles are left out.
+fn push_mesh(shapes: &mut Shapes, mesh: TriangleMesh) -> Vec<Prim> {
+    let id = shapes.meshes.len() as u32;
+    let prims = (0..mesh.triangle_count() as u32)
+        .filter(|&t| mesh.area(t) > 0.0)
+        .map(|tri| Prim::Triangle { mesh: id, tri })
+        .collect();
+    shapes.meshes.push(mesh);
+    prims
+}

@@ -1,0 +1,163 @@
+//! The plain scene description produced by the parser.
+
+use crate::loc::{Diagnostic, Loc};
+use crate::params::ParamSet;
+use lumis_math::Transform;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+pub use crate::params::SpectrumValue;
+
+/// A directive with a type and parameters, e.g. `Camera "perspective" ...`.
+#[derive(Clone, Debug)]
+pub struct Entity {
+    pub ty: String,
+    pub params: ParamSet,
+    /// Location of the type string (or of the directive when it has none).
+    pub loc: Loc,
+}
+
+#[derive(Clone, Debug)]
+pub struct CameraDesc {
+    pub entity: Entity,
+    /// The CTM at the `Camera` directive.
+    pub camera_from_world: Transform,
+}
+
+#[derive(Clone, Debug)]
+pub enum MaterialRef {
+    Default,
+    Index(u32),
+    /// Resolved later (forward references are allowed).
+    Named(String, Loc),
+}
+
+#[derive(Clone, Debug)]
+pub struct MaterialDesc {
+    pub name: Option<String>,
+    pub entity: Entity,
+}
+
+#[derive(Clone, Debug)]
+pub struct TextureDesc {
+    pub name: String,
+    /// "float" or "spectrum".
+    pub kind: String,
+    pub entity: Entity,
+    pub object_to_world: Transform,
+}
+
+#[derive(Clone, Debug)]
+pub struct ShapeDesc {
+    pub entity: Entity,
+    pub object_to_world: Transform,
+    pub reverse_orientation: bool,
+    pub material: MaterialRef,
+    pub area_light: Option<Entity>,
+    /// Always `None` for now: shapes inside `ObjectBegin` are dropped.
+    pub inside_object: Option<String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct LightDesc {
+    pub entity: Entity,
+    pub light_to_world: Transform,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct SceneDesc {
+    /// Folder of the top-level file; every relative path resolves against it.
+    pub base_dir: PathBuf,
+    pub camera: Option<CameraDesc>,
+    pub film: Option<Entity>,
+    pub sampler: Option<Entity>,
+    pub integrator: Option<Entity>,
+    pub filter: Option<Entity>,
+    pub materials: Vec<MaterialDesc>,
+    /// Index into `materials`.
+    pub named_materials: HashMap<String, u32>,
+    pub textures: Vec<TextureDesc>,
+    pub shapes: Vec<ShapeDesc>,
+    pub lights: Vec<LightDesc>,
+    pub warnings: Vec<Diagnostic>,
+    pub saw_world_begin: bool,
+}
+
+impl SceneDesc {
+    pub fn new(base_dir: &Path) -> SceneDesc {
+        SceneDesc {
+            base_dir: base_dir.to_path_buf(),
+            ..SceneDesc::default()
+        }
+    }
+
+    /// `p` as written in the scene, resolved against the top-level file's folder.
+    pub fn resolve_path(&self, p: &str) -> PathBuf {
+        let path = Path::new(p);
+        if path.is_absolute() {
+            path.to_path_buf()
+        } else {
+            self.base_dir.join(path)
+        }
+    }
+
+    /// The material a shape uses, following names; `None` for the default
+    /// material, `Err` (at the reference) for an undefined name.
+    pub fn material(&self, r: &MaterialRef) -> Result<Option<&MaterialDesc>, Diagnostic> {
+        match r {
+            MaterialRef::Default => Ok(None),
+            MaterialRef::Index(i) => Ok(self.materials.get(*i as usize)),
+            MaterialRef::Named(name, loc) => match self.named_materials.get(name) {
+                Some(&i) => Ok(self.materials.get(i as usize)),
+                None => {
+                    let names: Vec<&str> =
+                        self.named_materials.keys().map(|s| s.as_str()).collect();
+                    let d =
+                        Diagnostic::error(loc, format!("named material `{name}` is not defined"));
+                    Err(match crate::loc::suggest(name, &names, 2) {
+                        Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                        None => d,
+                    })
+                }
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resolve_relative_and_absolute() {
+        let d = SceneDesc::new(Path::new("/scenes/box"));
+        assert_eq!(
+            d.resolve_path("geo/a.ply"),
+            PathBuf::from("/scenes/box/geo/a.ply")
+        );
+        assert_eq!(d.resolve_path("/abs/a.ply"), PathBuf::from("/abs/a.ply"));
+    }
+
+    #[test]
+    fn material_lookup_reports_unknown_names() {
+        let mut d = SceneDesc::new(Path::new("."));
+        d.materials.push(MaterialDesc {
+            name: Some("Floor".into()),
+            entity: Entity {
+                ty: "diffuse".into(),
+                params: ParamSet::new(),
+                loc: Loc::none(),
+            },
+        });
+        d.named_materials.insert("Floor".into(), 0);
+        let m = d
+            .material(&MaterialRef::Named("Floor".into(), Loc::none()))
+            .unwrap();
+        assert_eq!(m.unwrap().entity.ty, "diffuse");
+        assert!(d.material(&MaterialRef::Default).unwrap().is_none());
+        let e = d
+            .material(&MaterialRef::Named("Flor".into(), Loc::none()))
+            .unwrap_err();
+        assert_eq!(e.help.as_deref(), Some("did you mean `Floor`?"));
+    }
+}
