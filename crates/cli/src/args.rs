@@ -58,6 +58,9 @@ pub struct RenderArgs {
     /// Sampler: sobol or independent (overrides the scene's).
     #[arg(long)]
     pub sampler: Option<String>,
+    /// Scale each sample down so no component exceeds VALUE (biased; off by default).
+    #[arg(long, value_name = "VALUE")]
+    pub clamp: Option<f32>,
     /// Print no progress, only warnings, errors and the summary.
     #[arg(short, long)]
     pub quiet: bool,

@@ -90,6 +90,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         filter: o.filter.clone(),
         crop: o.crop,
         spp_per_pass: 1,
+        clamp: a.clamp,
     };
     let reporter = Reporter::new(a.quiet);
     let cancel = AtomicBool::new(false);

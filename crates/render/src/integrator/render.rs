@@ -27,6 +27,9 @@ pub struct RenderSettings {
     pub filter: Filter,
     pub crop: PixelBounds,
     pub spp_per_pass: u32,
+    /// If set, each sample is scaled down so its largest component is at most
+    /// this (pbrt's `maxcomponentvalue`): biased, off by default.
+    pub clamp: Option<f32>,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -107,7 +110,13 @@ fn render_in_pool(
                         let off = settings.filter.sample(sampler.get_2d());
                         let p_film = Vec2::new(px as f32 + 0.5, py as f32 + 0.5) + off;
                         let ray = cam.generate_ray(p_film, sampler.get_2d());
-                        let l = integrator.li(scene, ray, &mut sampler, &mut local_rays);
+                        let mut l = integrator.li(scene, ray, &mut sampler, &mut local_rays);
+                        if let Some(c) = settings.clamp {
+                            let m = l.max_component();
+                            if m > c {
+                                l *= c / m;
+                            }
+                        }
                         if l.is_finite() {
                             pixel.add(l);
                         } else {

@@ -1,0 +1,77 @@
+//! Shared helpers for render tests: load scene text, render, summarise.
+#![allow(dead_code)]
+
+use lumis_math::SamplerKind;
+use lumis_render::film::Film;
+use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
+use lumis_render::load::{load_text, BuildOverrides, LoadedScene};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+
+pub fn load(text: &str, ov: &BuildOverrides) -> LoadedScene {
+    load_text(text, "test.pbrt", Path::new("."), ov)
+        .unwrap_or_else(|e| panic!("scene failed to load:\n{e}"))
+}
+
+pub fn settings(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderSettings {
+    RenderSettings {
+        spp,
+        seed,
+        threads,
+        time_limit: None,
+        sampler: l.options.sampler,
+        filter: l.options.filter.clone(),
+        crop: l.options.crop,
+        spp_per_pass: 1,
+        clamp: None,
+    }
+}
+
+pub fn render_loaded(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderOutcome {
+    render(
+        &l.scene,
+        &l.options.integrator,
+        &settings(l, spp, seed, threads),
+        &|_| {},
+        &AtomicBool::new(false),
+    )
+}
+
+/// Mean over all pixels and channels, and its standard error estimated from
+/// the spread of per-pixel means (pixels are independent estimates).
+pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
+    let vals: Vec<f64> = film
+        .pixels
+        .iter()
+        .map(|p| match channel {
+            Some(c) => p.mean[c],
+            None => (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0,
+        })
+        .collect();
+    let n = vals.len() as f64;
+    let mean = vals.iter().sum::<f64>() / n;
+    let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+pub fn independent() -> BuildOverrides {
+    BuildOverrides {
+        sampler: Some(SamplerKind::Independent),
+        ..Default::default()
+    }
+}
+
+/// `../shared/scenes/<rel>` if present. Absent: prints a notice and returns
+/// None, unless LUMIS_REQUIRE_SHARED=1, which makes it a failure.
+pub fn shared_scene(rel: &str) -> Option<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
+    let p = root.join(rel);
+    if p.exists() {
+        return Some(p);
+    }
+    if std::env::var("LUMIS_REQUIRE_SHARED").as_deref() == Ok("1") {
+        panic!("LUMIS_REQUIRE_SHARED=1 but {} is missing", p.display());
+    }
+    eprintln!("skipping: ../shared/scenes not found ({})", p.display());
+    None
+}
