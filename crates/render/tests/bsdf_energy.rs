@@ -8,7 +8,7 @@ use lumis_render::bsdf::{Bsdf, Conductor, Dielectric, Diffuse, Phong, TransportM
 
 const SAMPLES: usize = 40_000;
 /// Cosines of the outgoing directions tried for every BSDF.
-const COS_O: [f32; 8] = [1.0, 0.9, 0.7, 0.5, 0.3, 0.15, 0.05, -0.5];
+const COS_O: [f32; 11] = [1.0, 0.9, 0.7, 0.5, 0.3, 0.15, 0.05, -0.3, -0.5, -0.8, -1.0];
 
 fn dir(cos_theta: f32) -> Vec3 {
     let s = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
@@ -34,7 +34,7 @@ fn albedo(
         let Some(s) = bsdf.sample(wo, uc, u, mode) else {
             continue;
         };
-        if !(s.pdf > 0.0) {
+        if s.pdf.is_nan() || s.pdf <= 0.0 {
             continue;
         }
         let mut w = s.f * (s.wi.z.abs() / s.pdf);
@@ -80,6 +80,12 @@ fn check_bounded(
             out.push((c, mode, m, se));
         }
     }
+    let row: Vec<String> = out
+        .iter()
+        .filter(|r| r.1 == modes[0])
+        .map(|(c, _, m, _)| format!("{c}: {:.4}", m[1]))
+        .collect();
+    println!("{name} ({:?}, green): {}", modes[0], row.join(", "));
     out
 }
 

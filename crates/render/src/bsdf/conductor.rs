@@ -90,7 +90,7 @@ impl Conductor {
         }
         let pdf = self.distrib.pdf(wo, wm) / (4.0 * wo.dot(wm).abs());
         let (cos_o, cos_i) = (wo.z.abs(), wi.z.abs());
-        if cos_i == 0.0 || !(pdf > 0.0) {
+        if cos_i == 0.0 || pdf.is_nan() || pdf <= 0.0 {
             return None;
         }
         let fr = fr_complex_rgb(wo.dot(wm).abs(), self.eta, self.k);

@@ -46,6 +46,24 @@ fn half_vector(eta: f32, wo: Vec3, wi: Vec3) -> Option<(Vec3, f32, bool)> {
     Some((wm, etap, reflect))
 }
 
+/// Fresnel reflectance for the microfacet `wm` of a pair found by
+/// [`half_vector`]. For transmission both directions give the same value in
+/// exact arithmetic; the cosine on the optically thinner side is used since
+/// the Fresnel term is ill-conditioned near the critical angle on the denser
+/// side (this keeps `eval` reciprocal to float precision).
+fn pair_fresnel(eta: f32, wo: Vec3, wi: Vec3, wm: Vec3, reflect: bool) -> f32 {
+    if reflect {
+        return fr_dielectric(wo.dot(wm), eta);
+    }
+    let thinner_is_outside = eta >= 1.0;
+    let w = if (wo.z > 0.0) == thinner_is_outside {
+        wo
+    } else {
+        wi
+    };
+    fr_dielectric(w.dot(wm), eta)
+}
+
 impl Dielectric {
     /// `alpha_x`, `alpha_y`: GGX roughness; below 1e-3 (or with `eta == 1`)
     /// the interface is smooth.
@@ -68,7 +86,7 @@ impl Dielectric {
             return Rgb::BLACK;
         };
         let (cos_o, cos_i) = (wo.z, wi.z);
-        let fr = fr_dielectric(wo.dot(wm), self.eta);
+        let fr = pair_fresnel(self.eta, wo, wi, wm, reflect);
         let d = self.distrib.d(wm);
         let g = self.distrib.g(wo, wi);
         if reflect {
@@ -89,7 +107,7 @@ impl Dielectric {
         let Some((wm, etap, reflect)) = half_vector(self.eta, wo, wi) else {
             return 0.0;
         };
-        let r = fr_dielectric(wo.dot(wm), self.eta);
+        let r = pair_fresnel(self.eta, wo, wi, wm, reflect);
         let t = 1.0 - r;
         if reflect {
             self.distrib.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * r
@@ -112,6 +130,17 @@ impl Dielectric {
     }
 
     fn sample_smooth(&self, wo: Vec3, uc: f32, mode: TransportMode) -> Option<BsdfSample> {
+        if self.eta == 1.0 {
+            // Index-matched: the interface does not exist.
+            return Some(BsdfSample {
+                wi: -wo,
+                f: Rgb::splat(1.0 / wo.z.abs()),
+                pdf: 1.0,
+                delta: true,
+                transmission: true,
+                eta: 1.0,
+            });
+        }
         let r = fr_dielectric(wo.z, self.eta);
         let t = 1.0 - r;
         if uc < r {

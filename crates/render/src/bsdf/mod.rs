@@ -79,7 +79,7 @@ impl Bsdf {
     /// Solid-angle density with which [`Self::sample`] produces `wi` through
     /// its non-delta lobes.
     pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
-        let _ = mode;
+        let _ = mode; // Densities do not depend on the transport mode.
         match self {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
@@ -90,13 +90,25 @@ impl Bsdf {
 
     /// Sample an incident direction given the outgoing one. `uc` chooses
     /// between lobes, `u` samples within a lobe.
+    ///
+    /// Never returns a sample with zero or non-finite value, zero density or
+    /// `wi` on the horizon: those are `None`.
     pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
-        match self {
+        let bs = match self {
             Bsdf::Diffuse(b) => b.sample(wo, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u, mode),
             Bsdf::Phong(b) => b.sample(wo, uc, u),
+        }?;
+        if bs.f.is_black()
+            || !bs.f.is_finite()
+            || bs.pdf.is_nan()
+            || bs.pdf <= 0.0
+            || bs.wi.z == 0.0
+        {
+            return None;
         }
+        Some(bs)
     }
 
     /// Every lobe is perfectly specular: `eval` and `pdf` are always zero.
@@ -193,9 +205,6 @@ impl SurfaceBsdf {
             return None;
         }
         let mut bs = self.bsdf.sample(wo_l, uc, u, mode)?;
-        if bs.f.is_black() || !(bs.pdf > 0.0) || bs.wi.z == 0.0 || !bs.f.is_finite() {
-            return None;
-        }
         bs.wi = self.to_world(bs.wi);
         if !self.sides_allowed(wo, bs.wi) {
             return None;

@@ -99,7 +99,7 @@ impl Phong {
             return None;
         }
         let pdf = self.pdf(wo, wi);
-        if !(pdf > 0.0) {
+        if pdf.is_nan() || pdf <= 0.0 {
             return None;
         }
         Some(BsdfSample {

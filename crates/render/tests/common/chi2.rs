@@ -6,7 +6,8 @@
 //! same solid angle); sample counts are compared with the expected counts
 //! `N ∫_bin pdf dω`, integrated by tensor Gauss-Legendre quadrature inside each
 //! bin (no node lies on a bin edge, so discontinuities placed on edges, such as
-//! the horizon, are integrated exactly enough). Samples that fail or are
+//! the horizon, are integrated accurately; other jumps along lines of constant
+//! `cos theta` can be declared in [`Chi2Config::z_breaks`]). Samples that fail or are
 //! delta count as missing mass, compared with `N (1 - ∫ pdf)` as one more
 //! cell. Cells with small expectation are pooled (in order of increasing
 //! expectation) until each pooled cell expects at least `min_expected`.
@@ -30,6 +31,9 @@ pub struct Chi2Config {
     pub quad_points: usize,
     pub min_expected: f64,
     pub seed: u64,
+    /// Values of `cos theta` where the pdf is known to jump (besides bin
+    /// edges): bins containing one are integrated piecewise on either side.
+    pub z_breaks: Vec<f64>,
 }
 
 impl Default for Chi2Config {
@@ -38,9 +42,10 @@ impl Default for Chi2Config {
             cos_bins: 80,
             phi_bins: 160,
             samples: 1_000_000,
-            quad_points: 6,
+            quad_points: 10,
             min_expected: 5.0,
             seed: 1,
+            z_breaks: Vec::new(),
         }
     }
 }
@@ -168,17 +173,26 @@ pub fn integrate_pdf(cfg: &Chi2Config, pdf: impl Fn(Vec3) -> f32) -> Vec<f64> {
     }
     let mut out = vec![0.0; nz * np];
     for iz in 0..nz {
-        for &(x, wz) in &gl {
-            let z = -1.0 + (iz as f64 + 0.5 * (x + 1.0)) * hz;
-            let wz = 0.5 * wz * hz;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            for ip in 0..np {
-                let mut s = 0.0;
-                for &(c, sn, wp) in &phis[ip * gl.len()..(ip + 1) * gl.len()] {
-                    let d = Vec3::new((r * c) as f32, (r * sn) as f32, z as f32);
-                    s += wp * pdf(d) as f64;
+        // Pieces of this bin's z range, split at the known jumps.
+        let (z0, z1) = (-1.0 + iz as f64 * hz, -1.0 + (iz + 1) as f64 * hz);
+        let mut cuts = vec![z0];
+        cuts.extend(cfg.z_breaks.iter().copied().filter(|&b| b > z0 && b < z1));
+        cuts.push(z1);
+        cuts.sort_by(f64::total_cmp);
+        for piece in cuts.windows(2) {
+            let (a, b) = (piece[0], piece[1]);
+            for &(x, wz) in &gl {
+                let z = a + 0.5 * (x + 1.0) * (b - a);
+                let wz = 0.5 * wz * (b - a);
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                for ip in 0..np {
+                    let mut s = 0.0;
+                    for &(c, sn, wp) in &phis[ip * gl.len()..(ip + 1) * gl.len()] {
+                        let d = Vec3::new((r * c) as f32, (r * sn) as f32, z as f32);
+                        s += wp * pdf(d) as f64;
+                    }
+                    out[iz * np + ip] += wz * s;
                 }
-                out[iz * np + ip] += wz * s;
             }
         }
     }

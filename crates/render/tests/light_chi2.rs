@@ -1,0 +1,241 @@
+//! Chi-square tests of every light with a sampling density: the directions
+//! `sample_li` returns from a reference point against `pdf_li`, and the
+//! emitted directions of `sample_le` against their density.
+
+mod common;
+mod support;
+
+use common::chi2::{self, sidak_alpha, Chi2Config};
+use lumis_math::{Frame, Vec3};
+use lumis_render::geometry::Ray;
+use lumis_render::light::Light;
+use lumis_render::load::LoadedScene;
+use support::*;
+
+const TESTS: usize = 9;
+
+fn scene(shape: &str, two_sided: bool) -> LoadedScene {
+    let text = format!(
+        r#"Film "rgb" "integer xresolution" [ 4 ] "integer yresolution" [ 4 ]
+Camera "perspective"
+WorldBegin
+AttributeBegin
+AreaLightSource "diffuse" "rgb L" [ 1 2 3 ] "bool twosided" {two_sided}
+{shape}
+AttributeEnd
+"#
+    );
+    load(&text, &Default::default())
+}
+
+/// Density of `sample_li` for direction `wi` from `p`: found by tracing to the light.
+fn pdf_li(l: &LoadedScene, light: u32, p: Vec3, wi: Vec3) -> f32 {
+    let Some(hit) = l.scene.intersect(&Ray::new(p, wi)) else {
+        return 0.0;
+    };
+    if hit.light != Some(light) {
+        return 0.0;
+    }
+    l.scene.lights[light as usize].pdf_li(&l.scene.shapes, p, wi, hit.geom.p, hit.geom.ng)
+}
+
+fn check_li(l: &LoadedScene, p: Vec3, label: &str) {
+    let mut cfg = Chi2Config::default();
+    cfg.samples = 400_000;
+    // Light outlines are curves across the bins: 30x30 quadrature points per bin
+    // keep the integration error of edge bins below the test's resolution.
+    cfg.quad_points = 30;
+    for (i, light) in l.scene.lights.iter().enumerate() {
+        let out = chi2::run(
+            &cfg,
+            |u, _| light.sample_li(&l.scene.shapes, p, u).map(|s| s.wi),
+            |wi| pdf_li(l, i as u32, p, wi),
+        );
+        assert!(
+            out.passes(sidak_alpha(0.01, TESTS)),
+            "{label} light {i}: {}",
+            out.report()
+        );
+        assert!(
+            out.sampled_fraction > 0.999,
+            "{label}: samples failed: {}",
+            out.report()
+        );
+    }
+}
+
+#[test]
+fn triangle_lights() {
+    let l = scene(
+        r#"Shape "trianglemesh" "point3 P" [ -1 -1 2  1 -1 2.5  1 1 2  -1 1 1.5 ] "integer indices" [ 0 1 2 0 2 3 ]"#,
+        true,
+    );
+    assert_eq!(l.scene.lights.len(), 2);
+    check_li(&l, Vec3::new(0.2, -0.1, 0.0), "triangle");
+}
+
+#[test]
+fn disk_light() {
+    let l = scene(
+        r#"Translate 0.3 0 2 Rotate 30 1 0 0 Shape "disk" "float radius" [ 1.5 ] "float innerradius" [ 0.4 ]"#,
+        true,
+    );
+    check_li(&l, Vec3::new(0.0, 0.0, 0.0), "disk");
+}
+
+#[test]
+fn sphere_light_from_outside_and_inside() {
+    let l = scene(
+        r#"Translate 0 0 3 Shape "sphere" "float radius" [ 1.2 ]"#,
+        false,
+    );
+    check_li(&l, Vec3::new(0.1, 0.2, 0.0), "sphere outside (cone)");
+    let l = scene(r#"Shape "sphere" "float radius" [ 2 ]"#, true);
+    check_li(&l, Vec3::new(0.3, -0.4, 0.5), "sphere inside (area)");
+}
+
+#[test]
+fn uniform_infinite_light() {
+    let l = load(
+        "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" [ 0.01 ]\n",
+        &Default::default(),
+    );
+    let light = &l.scene.lights[0];
+    let p = Vec3::new(5.0, 0.0, 0.0);
+    let out = chi2::run(
+        &Chi2Config {
+            samples: 400_000,
+            ..Default::default()
+        },
+        |u, _| light.sample_li(&l.scene.shapes, p, u).map(|s| s.wi),
+        |wi| light.pdf_li(&l.scene.shapes, p, wi, Vec3::ZERO, Vec3::ZERO),
+    );
+    assert!(out.passes(sidak_alpha(0.01, TESTS)), "{}", out.report());
+}
+
+/// Emitted directions: cosine-weighted about the normal (doubled for two-sided lights).
+#[test]
+fn area_emission_directions() {
+    for two_sided in [false, true] {
+        let l = scene(
+            r#"Shape "trianglemesh" "point3 P" [ -1 -1 2  1 -1 2  0 1 2 ] "integer indices" [ 0 1 2 ]"#,
+            two_sided,
+        );
+        let Light::Area(a) = &l.scene.lights[0] else {
+            panic!("area light expected")
+        };
+        let n = lumis_render::light::shape_sample::sample_area(
+            &l.scene.shapes,
+            a.prim,
+            lumis_math::Vec2::splat(0.3),
+        )
+        .n;
+        let out = chi2::run(
+            &Chi2Config {
+                samples: 400_000,
+                ..Default::default()
+            },
+            |u, uc| {
+                l.scene.lights[0]
+                    .sample_le(&l.scene.shapes, lumis_math::Vec2::new(uc, 0.5), u)
+                    .map(|s| s.ray.d)
+            },
+            |d| {
+                let c = d.dot(n);
+                if two_sided {
+                    c.abs() / (2.0 * lumis_math::PI)
+                } else {
+                    c.max(0.0) / lumis_math::PI
+                }
+            },
+        );
+        assert!(
+            out.passes(sidak_alpha(0.01, TESTS)),
+            "two-sided {two_sided}: {}",
+            out.report()
+        );
+        // Densities reported by sample_le agree with the distribution tested.
+        let s = l.scene.lights[0]
+            .sample_le(
+                &l.scene.shapes,
+                lumis_math::Vec2::new(0.2, 0.7),
+                lumis_math::Vec2::new(0.4, 0.1),
+            )
+            .unwrap();
+        let expected = s.ray.d.dot(s.n).abs() / lumis_math::PI / if two_sided { 2.0 } else { 1.0 };
+        assert!((s.pdf_dir - expected).abs() < 1e-4 * expected.max(1.0));
+        assert!(
+            (s.pdf_pos - 1.0 / 2.0).abs() < 1e-5,
+            "triangle area 2: pdf_pos {}",
+            s.pdf_pos
+        );
+    }
+}
+
+/// Spot light photons: uniform in the outer cone.
+#[test]
+fn spot_emission_directions() {
+    let l = load(
+        "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nLightSource \"spot\" \"point3 from\" [ 0 0 0 ] \"point3 to\" [ 1 1 0 ] \"float coneangle\" [ 35 ] \"float conedelta\" [ 10 ]\n",
+        &Default::default(),
+    );
+    let axis = Vec3::new(1.0, 1.0, 0.0).normalize();
+    let cos_max = 35f32.to_radians().cos();
+    let frame = Frame::from_normal(axis);
+    let mut cfg = Chi2Config {
+        samples: 400_000,
+        ..Default::default()
+    };
+    cfg.z_breaks = vec![cos_max as f64];
+    let out = chi2::run(
+        &cfg,
+        |u, _| {
+            l.scene.lights[0]
+                .sample_le(&l.scene.shapes, u, u)
+                .map(|s| frame.to_local(s.ray.d))
+        },
+        |d| {
+            if d.z >= cos_max {
+                lumis_math::sampling::uniform_cone_pdf(cos_max)
+            } else {
+                0.0
+            }
+        },
+    );
+    assert!(out.passes(sidak_alpha(0.01, TESTS)), "{}", out.report());
+}
+
+/// Lights are chosen in proportion to their power.
+#[test]
+fn light_choice_is_proportional_to_power() {
+    let l = load(
+        r#"Film "rgb" "integer xresolution" [ 4 ] "integer yresolution" [ 4 ]
+Camera "perspective"
+WorldBegin
+LightSource "point" "rgb I" [ 1 1 1 ]
+LightSource "point" "rgb I" [ 3 3 3 ] "point3 from" [ 1 0 0 ]
+AreaLightSource "diffuse" "rgb L" [ 2 2 2 ]
+Shape "sphere" "float radius" [ 0.5 ]
+"#,
+        &Default::default(),
+    );
+    let powers: Vec<f64> = l
+        .scene
+        .lights
+        .iter()
+        .map(|x| x.power(&l.scene.shapes).luminance() as f64)
+        .collect();
+    let total: f64 = powers.iter().sum();
+    let n = 300_000;
+    let mut counts = vec![0f64; powers.len()];
+    let mut rng = lumis_math::Pcg32::new(4, 4);
+    for _ in 0..n {
+        let (i, pmf) = l.scene.light_sampler.sample(rng.next_f32()).unwrap();
+        assert!((pmf as f64 - powers[i as usize] / total).abs() < 1e-5);
+        counts[i as usize] += 1.0;
+    }
+    let expected: Vec<f64> = powers.iter().map(|p| p / total * n as f64).collect();
+    let (c2, dof) = chi2::pearson(&counts, &expected, 5.0);
+    let p = chi2::chi2_sf(c2, dof);
+    assert!(p > sidak_alpha(0.01, TESTS), "chi2 {c2} dof {dof} p {p}");
+}
