@@ -213,7 +213,7 @@ fn build_shape(
                 "shape \"disk\"",
                 &["height", "radius", "innerradius", "phimax"],
             );
-            if !(radius > 0.0) || !(inner >= 0.0 && inner < radius) {
+            if !(radius > 0.0 && inner >= 0.0 && inner < radius) {
                 return Err(Diagnostic::error(
                     &e.loc,
                     "disk needs radius > innerradius >= 0",
@@ -248,7 +248,7 @@ fn make_mesh(
     xf: &lumis_math::Transform,
     flip: bool,
 ) -> Result<TriangleMesh, Diagnostic> {
-    if indices.len() % 3 != 0 {
+    if !indices.len().is_multiple_of(3) {
         return Err(Diagnostic::error(
             &e.loc,
             format!("{} indices is not a multiple of 3", indices.len()),

@@ -1,0 +1,110 @@
+//! End-to-end tests of the `lumis` binary: outputs, summary, and bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn lumis(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lumis")).args(args).current_dir(dir).output().expect("run lumis")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("lumis-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).to_string()
+}
+
+#[test]
+fn default_scene_writes_exr_and_png_and_a_summary() {
+    let d = temp_dir("default");
+    let o = lumis(&d, &["render", "--resolution", "24x24", "--spp", "2"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("lumis.exr").exists() && d.join("lumis.png").exists());
+    let e = stderr(&o);
+    assert!(e.contains("2 spp") && e.contains("Mrays/s"), "summary line missing: {e}");
+    let img = lumis_render::image_io::read_image(&d.join("lumis.exr")).unwrap();
+    assert_eq!((img.width, img.height), (24, 24));
+    assert_eq!(img.meta("lumis:spp"), Some("2"));
+    assert!(img.channel_means()[0] > 0.0);
+}
+
+#[test]
+fn output_format_follows_extension_and_crop_selects_pixels() {
+    let d = temp_dir("pfm");
+    let o = lumis(&d, &["render", "--resolution", "20x10", "--spp", "1", "--crop", "0,0.5,0,1", "-o", "out.pfm"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = lumis_render::image_io::read_image(&d.join("out.pfm")).unwrap();
+    assert_eq!((img.width, img.height), (10, 10));
+    let o = lumis(&d, &["render", "--spp", "1", "-o", "out.jpg"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("unsupported image extension"));
+}
+
+#[test]
+fn time_budget_stops_the_render() {
+    let d = temp_dir("time");
+    let o = lumis(&d, &["render", "--resolution", "16x16", "--time", "0.3", "-o", "t.exr"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = lumis_render::image_io::read_image(&d.join("t.exr")).unwrap();
+    let spp: u32 = img.meta("lumis:spp").unwrap().parse().unwrap();
+    assert!(spp >= 1);
+}
+
+#[test]
+fn syntax_error_has_location_and_caret_and_writes_nothing() {
+    let d = temp_dir("syntax");
+    // A wrong value type, and an unclosed bracket.
+    let cases = [
+        ("type.pbrt", "Film \"rgb\"\nCamera \"perspective\" \"float fov\" [ 45 ]\nWorldBegin\nShape \"sphere\" \"float radius\" [ \"big\" ]\n", "type.pbrt:4:33"),
+        ("bracket.pbrt", "Film \"rgb\"\nCamera \"perspective\" \"float fov\" [ 45 \nWorldBegin\n", "bracket.pbrt:2:34"),
+    ];
+    for (name, text, loc) in cases {
+        std::fs::write(d.join(name), text).unwrap();
+        let o = lumis(&d, &["render", name, "-o", "out.exr"]);
+        assert_eq!(o.status.code(), Some(1));
+        let e = stderr(&o);
+        assert!(e.contains(loc), "no {loc} in {e}");
+        assert!(e.contains('^'), "no caret in {e}");
+        assert!(!e.contains("panicked"));
+        assert!(!d.join("out.exr").exists());
+    }
+}
+
+#[test]
+fn missing_scene_and_missing_include_are_named() {
+    let d = temp_dir("missing");
+    let o = lumis(&d, &["render", "nope.pbrt"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("nope.pbrt"));
+    std::fs::write(d.join("inc.pbrt"), "WorldBegin\nInclude \"geometry/absent.pbrt\"\n").unwrap();
+    let o = lumis(&d, &["render", "inc.pbrt"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("absent.pbrt") && e.contains("inc.pbrt:2:"), "{e}");
+    assert!(!d.join("lumis.exr").exists());
+}
+
+#[test]
+fn unknown_parameter_is_a_located_warning_with_suggestion() {
+    let d = temp_dir("unknown");
+    let scene = "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\nCamera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [ 1 1 1 ]\nMaterial \"diffuse\" \"rgb reflectanse\" [ 0.5 0.5 0.5 ]\nShape \"sphere\"\n";
+    std::fs::write(d.join("warn.pbrt"), scene).unwrap();
+    let o = lumis(&d, &["render", "warn.pbrt", "--spp", "1", "-o", "w.exr"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("warn.pbrt:5:") && e.contains("reflectanse") && e.contains("reflectance"), "{e}");
+}
+
+#[test]
+fn bad_arguments_are_refused() {
+    let d = temp_dir("args");
+    for args in [&["render", "--resolution", "0x5"][..], &["render", "--integrator", "nope", "--spp", "1"], &["render", "--time", "-1"]] {
+        let o = lumis(&d, args);
+        assert!(!o.status.success(), "{args:?} should fail");
+        assert!(!stderr(&o).contains("panicked"));
+    }
+}
