@@ -4,7 +4,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn lumis(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumis")).args(args).current_dir(dir).output().expect("run lumis")
+    Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run lumis")
 }
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -25,7 +29,10 @@ fn default_scene_writes_exr_and_png_and_a_summary() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(d.join("lumis.exr").exists() && d.join("lumis.png").exists());
     let e = stderr(&o);
-    assert!(e.contains("2 spp") && e.contains("Mrays/s"), "summary line missing: {e}");
+    assert!(
+        e.contains("2 spp") && e.contains("Mrays/s"),
+        "summary line missing: {e}"
+    );
     let img = lumis_render::image_io::read_image(&d.join("lumis.exr")).unwrap();
     assert_eq!((img.width, img.height), (24, 24));
     assert_eq!(img.meta("lumis:spp"), Some("2"));
@@ -35,7 +42,20 @@ fn default_scene_writes_exr_and_png_and_a_summary() {
 #[test]
 fn output_format_follows_extension_and_crop_selects_pixels() {
     let d = temp_dir("pfm");
-    let o = lumis(&d, &["render", "--resolution", "20x10", "--spp", "1", "--crop", "0,0.5,0,1", "-o", "out.pfm"]);
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--resolution",
+            "20x10",
+            "--spp",
+            "1",
+            "--crop",
+            "0,0.5,0,1",
+            "-o",
+            "out.pfm",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let img = lumis_render::image_io::read_image(&d.join("out.pfm")).unwrap();
     assert_eq!((img.width, img.height), (10, 10));
@@ -47,7 +67,18 @@ fn output_format_follows_extension_and_crop_selects_pixels() {
 #[test]
 fn time_budget_stops_the_render() {
     let d = temp_dir("time");
-    let o = lumis(&d, &["render", "--resolution", "16x16", "--time", "0.3", "-o", "t.exr"]);
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--resolution",
+            "16x16",
+            "--time",
+            "0.3",
+            "-o",
+            "t.exr",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let img = lumis_render::image_io::read_image(&d.join("t.exr")).unwrap();
     let spp: u32 = img.meta("lumis:spp").unwrap().parse().unwrap();
@@ -80,11 +111,18 @@ fn missing_scene_and_missing_include_are_named() {
     let o = lumis(&d, &["render", "nope.pbrt"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("nope.pbrt"));
-    std::fs::write(d.join("inc.pbrt"), "WorldBegin\nInclude \"geometry/absent.pbrt\"\n").unwrap();
+    std::fs::write(
+        d.join("inc.pbrt"),
+        "WorldBegin\nInclude \"geometry/absent.pbrt\"\n",
+    )
+    .unwrap();
     let o = lumis(&d, &["render", "inc.pbrt"]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
-    assert!(e.contains("absent.pbrt") && e.contains("inc.pbrt:2:"), "{e}");
+    assert!(
+        e.contains("absent.pbrt") && e.contains("inc.pbrt:2:"),
+        "{e}"
+    );
     assert!(!d.join("lumis.exr").exists());
 }
 
@@ -96,13 +134,20 @@ fn unknown_parameter_is_a_located_warning_with_suggestion() {
     let o = lumis(&d, &["render", "warn.pbrt", "--spp", "1", "-o", "w.exr"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let e = stderr(&o);
-    assert!(e.contains("warn.pbrt:5:") && e.contains("reflectanse") && e.contains("reflectance"), "{e}");
+    assert!(
+        e.contains("warn.pbrt:5:") && e.contains("reflectanse") && e.contains("reflectance"),
+        "{e}"
+    );
 }
 
 #[test]
 fn bad_arguments_are_refused() {
     let d = temp_dir("args");
-    for args in [&["render", "--resolution", "0x5"][..], &["render", "--integrator", "nope", "--spp", "1"], &["render", "--time", "-1"]] {
+    for args in [
+        &["render", "--resolution", "0x5"][..],
+        &["render", "--integrator", "nope", "--spp", "1"],
+        &["render", "--time", "-1"],
+    ] {
         let o = lumis(&d, args);
         assert!(!o.status.success(), "{args:?} should fail");
         assert!(!stderr(&o).contains("panicked"));

@@ -42,7 +42,11 @@ fn pdf_li(l: &LoadedScene, light: u32, p: Vec3, wi: Vec3) -> f32 {
 fn check_li(l: &LoadedScene, p: Vec3, label: &str) {
     // Light outlines are curves across the bins: 30x30 quadrature points per bin
     // keep the integration error of edge bins below the test's resolution.
-    let cfg = Chi2Config { samples: 400_000, quad_points: 30, ..Default::default() };
+    let cfg = Chi2Config {
+        samples: 400_000,
+        quad_points: 30,
+        ..Default::default()
+    };
     for (i, light) in l.scene.lights.iter().enumerate() {
         let out = chi2::run(
             &cfg,

@@ -7,30 +7,54 @@
 
 use crate::geometry::{Aabb, Ray};
 use lumis_math::Vec3;
-use lumis_math::Vec3A;
+use lumis_math::Vec4;
 
 const BINS: usize = 16;
 const MAX_LEAF: usize = 8;
-const TRAVERSAL_COST: f32 = 1.0;
+const TRAVERSAL_COST: f32 = 3.0;
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
 const MEDIAN_DEPTH: u32 = 31;
+/// Boxes are culled against `tmax * CULL_SLACK`: a primitive's computed hit
+/// distance may round a few ulps below its box's computed entry distance, and
+/// such a hit must not be lost when it is just closer than the current `tmax`.
+const CULL_SLACK: f32 = 1.0 + 32.0 * f32::EPSILON;
 
-/// A 32-byte node: leaves hold `count > 0` primitives from `offset`; interior
-/// nodes (`count == 0`) have their left child next and their right child at `offset`.
+/// A 4-wide node (128 bytes, two cache lines): the boxes of up to four
+/// children in SoA form, so one SIMD slab test handles all of them.
+/// Child `i` is a leaf of `count[i] > 0` primitives from slot `child[i]`, an
+/// interior node at index `child[i]` (`count[i] == 0`), or unused (empty box).
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(32))]
+#[repr(C, align(64))]
 pub struct Node {
-    min: [f32; 3],
-    count: u32,
-    max: [f32; 3],
-    offset: u32,
+    /// min x, min y, min z, max x, max y, max z of the four children.
+    planes: [Vec4; 6],
+    child: [u32; 4],
+    count: [u32; 4],
 }
+
+const EMPTY_NODE: Node = Node {
+    planes: [
+        Vec4::INFINITY,
+        Vec4::INFINITY,
+        Vec4::INFINITY,
+        Vec4::NEG_INFINITY,
+        Vec4::NEG_INFINITY,
+        Vec4::NEG_INFINITY,
+    ],
+    child: [0; 4],
+    count: [0; 4],
+};
+
+/// Traversal stack size. Each 4-wide level pushes at most 3 entries and the
+/// build bounds the binary depth by `MEDIAN_DEPTH + 32`, so this never overflows.
+const STACK: usize = 3 * (MEDIAN_DEPTH as usize + 34);
 
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     pub nodes: Vec<Node>,
     /// Leaf slot → index of the primitive in the caller's list.
     pub order: Vec<u32>,
+    bounds: Aabb,
 }
 
 #[derive(Clone, Copy)]
@@ -52,6 +76,83 @@ enum BuildNode {
     },
 }
 
+impl BuildNode {
+    fn bounds(&self) -> &Aabb {
+        match self {
+            BuildNode::Leaf { bounds, .. } | BuildNode::Interior { bounds, .. } => bounds,
+        }
+    }
+}
+
+/// Per-ray constants of the slab test.
+struct RayBoxes {
+    o: [Vec4; 3],
+    inv_d: [Vec4; 3],
+    /// Plane index (into `Node::planes`) of the near and far slab plane per axis.
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl RayBoxes {
+    #[inline(always)]
+    fn new(ray: &Ray) -> RayBoxes {
+        let inv = Vec3::ONE / ray.d;
+        let neg = [
+            ray.d.x.is_sign_negative(),
+            ray.d.y.is_sign_negative(),
+            ray.d.z.is_sign_negative(),
+        ];
+        RayBoxes {
+            o: [
+                Vec4::splat(ray.o.x),
+                Vec4::splat(ray.o.y),
+                Vec4::splat(ray.o.z),
+            ],
+            inv_d: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
+            near: [
+                3 * neg[0] as usize,
+                1 + 3 * neg[1] as usize,
+                2 + 3 * neg[2] as usize,
+            ],
+            far: [
+                3 - 3 * neg[0] as usize,
+                4 - 3 * neg[1] as usize,
+                5 - 3 * neg[2] as usize,
+            ],
+        }
+    }
+
+    /// Entry distances of the four children and the mask of those hit before `tmax`.
+    ///
+    /// With a zero direction component and the origin exactly on a slab plane,
+    /// `0 * inf` gives NaN; glam's `min`/`max` (SSE `minps`/`maxps` and the
+    /// scalar fallback alike) return the second operand when either is NaN, so
+    /// folding each axis in as the *first* operand drops the NaN, treating
+    /// the ray as inside that (closed) slab.
+    #[inline(always)]
+    fn test(&self, n: &Node, tmax: f32) -> (Vec4, u32) {
+        let p = &n.planes;
+        let tn0 = (p[self.near[0]] - self.o[0]) * self.inv_d[0];
+        let tn1 = (p[self.near[1]] - self.o[1]) * self.inv_d[1];
+        let tn2 = (p[self.near[2]] - self.o[2]) * self.inv_d[2];
+        let tf0 = (p[self.far[0]] - self.o[0]) * self.inv_d[0];
+        let tf1 = (p[self.far[1]] - self.o[1]) * self.inv_d[1];
+        let tf2 = (p[self.far[2]] - self.o[2]) * self.inv_d[2];
+        let tnear = tn2.max(tn1.max(tn0.max(Vec4::ZERO)));
+        // Conservative far bound (Ize 2013) so rounding never loses a hit.
+        let tfar = tf2.min(tf1.min(tf0)) * (1.0 + 2.0 * 3.0 * f32::EPSILON * 0.5);
+        let tfar = tfar.min(Vec4::splat(tmax));
+        (tnear, tnear.cmple(tfar).bitmask())
+    }
+}
+
+#[derive(Clone, Copy, Default)]
+struct Entry {
+    child: u32,
+    count: u32,
+    t: f32,
+}
+
 impl Bvh {
     /// Builds over primitives given by their bounds. Empty boxes are skipped.
     pub fn build(bounds: &[Aabb]) -> Bvh {
@@ -69,21 +170,20 @@ impl Bvh {
             return Bvh::default();
         }
         let root = build_rec(&mut refs, 0, 0);
-        let mut nodes = Vec::with_capacity(2 * refs.len() / 2 + 1);
-        flatten(&root, &mut nodes);
+        let mut nodes = Vec::with_capacity(refs.len() / 4 + 1);
+        flatten(&[&root], &mut nodes);
         Bvh {
             nodes,
             order: refs.iter().map(|r| r.index).collect(),
+            bounds: *root.bounds(),
         }
     }
 
     pub fn bounds(&self) -> Aabb {
-        match self.nodes.first() {
-            Some(n) => Aabb {
-                min: Vec3::from(n.min),
-                max: Vec3::from(n.max),
-            },
-            None => Aabb::EMPTY,
+        if self.nodes.is_empty() {
+            Aabb::EMPTY
+        } else {
+            self.bounds
         }
     }
 
@@ -102,56 +202,62 @@ impl Bvh {
         if self.nodes.is_empty() {
             return None;
         }
-        let o = Vec3A::from(ray.o);
-        let inv_d = Vec3A::ONE / Vec3A::from(ray.d);
+        let rb = RayBoxes::new(ray);
         let mut tmax = ray.tmax;
+        let mut tcull = tmax * CULL_SLACK;
         let mut best = None;
-        let mut stack = [0u32; 64];
+        let mut stack = [Entry::default(); STACK];
         let mut sp = 0usize;
-        let mut idx = 0u32;
-        if hit_box(&self.nodes[0], o, inv_d, tmax) == f32::INFINITY {
-            return None;
-        }
+        let mut cur = Entry {
+            child: 0,
+            count: 0,
+            t: 0.0,
+        };
         loop {
-            let node = &self.nodes[idx as usize];
-            if node.count > 0 {
-                for slot in node.offset..node.offset + node.count {
+            if cur.count > 0 {
+                for slot in cur.child..cur.child + cur.count {
                     if let Some(t) = test(slot, ray, tmax) {
                         tmax = t;
+                        tcull = t * CULL_SLACK;
                         best = Some((t, slot));
                     }
                 }
             } else {
-                let (l, r) = (idx + 1, node.offset);
-                let tl = hit_box(&self.nodes[l as usize], o, inv_d, tmax);
-                let tr = hit_box(&self.nodes[r as usize], o, inv_d, tmax);
-                match (tl < f32::INFINITY, tr < f32::INFINITY) {
-                    (true, true) => {
-                        let (near, far) = if tl <= tr { (l, r) } else { (r, l) };
-                        stack[sp] = far;
+                let node = &self.nodes[cur.child as usize];
+                let (tnear, mut mask) = rb.test(node, tcull);
+                if mask != 0 {
+                    let tn = tnear.to_array();
+                    // Push the hit children far to near; continue with the nearest.
+                    let base = sp;
+                    while mask != 0 {
+                        let i = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let e = Entry {
+                            child: node.child[i],
+                            count: node.count[i],
+                            t: tn[i],
+                        };
+                        let mut j = sp;
+                        while j > base && stack[j - 1].t < e.t {
+                            stack[j] = stack[j - 1];
+                            j -= 1;
+                        }
+                        stack[j] = e;
                         sp += 1;
-                        idx = near;
-                        continue;
                     }
-                    (true, false) => {
-                        idx = l;
-                        continue;
-                    }
-                    (false, true) => {
-                        idx = r;
-                        continue;
-                    }
-                    (false, false) => {}
+                    sp -= 1;
+                    cur = stack[sp];
+                    continue;
                 }
             }
-            // Pop, skipping nodes that are now farther than the closest hit.
+            // Pop, skipping entries that are now farther than the closest hit.
             loop {
                 if sp == 0 {
                     return best;
                 }
                 sp -= 1;
-                idx = stack[sp];
-                if hit_box(&self.nodes[idx as usize], o, inv_d, tmax) < f32::INFINITY {
+                if stack[sp].t <= tcull {
+                    cur = stack[sp];
                     break;
                 }
             }
@@ -164,62 +270,79 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let o = Vec3A::from(ray.o);
-        let inv_d = Vec3A::ONE / Vec3A::from(ray.d);
+        let rb = RayBoxes::new(ray);
         let tmax = ray.tmax;
-        let mut stack = [0u32; 64];
+        let mut stack = [(0u32, 0u32); STACK];
         let mut sp = 0usize;
-        if hit_box(&self.nodes[0], o, inv_d, tmax) == f32::INFINITY {
-            return false;
-        }
-        let mut idx = 0u32;
+        let (mut child, mut count) = (0u32, 0u32);
         loop {
-            let node = &self.nodes[idx as usize];
-            if node.count > 0 {
-                for slot in node.offset..node.offset + node.count {
+            if count > 0 {
+                for slot in child..child + count {
                     if test(slot, ray, tmax) {
                         return true;
                     }
                 }
             } else {
-                let (l, r) = (idx + 1, node.offset);
-                let hl = hit_box(&self.nodes[l as usize], o, inv_d, tmax) < f32::INFINITY;
-                let hr = hit_box(&self.nodes[r as usize], o, inv_d, tmax) < f32::INFINITY;
-                if hl && hr {
-                    stack[sp] = r;
+                let node = &self.nodes[child as usize];
+                let (_, mut mask) = rb.test(node, tmax * CULL_SLACK);
+                while mask != 0 {
+                    let i = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    stack[sp] = (node.child[i], node.count[i]);
                     sp += 1;
-                    idx = l;
-                    continue;
-                } else if hl {
-                    idx = l;
-                    continue;
-                } else if hr {
-                    idx = r;
-                    continue;
                 }
             }
             if sp == 0 {
                 return false;
             }
             sp -= 1;
-            idx = stack[sp];
+            (child, count) = stack[sp];
         }
     }
 }
 
-/// Entry distance of the ray into the node's box, or infinity on a miss.
-#[inline(always)]
-fn hit_box(n: &Node, o: Vec3A, inv_d: Vec3A, tmax: f32) -> f32 {
-    let t0 = (Vec3A::from(n.min) - o) * inv_d;
-    let t1 = (Vec3A::from(n.max) - o) * inv_d;
-    let tnear = t0.min(t1).max_element().max(0.0);
-    // Conservative far bound (Ize 2013) so rounding never loses a hit.
-    let tfar = t0.max(t1).min_element() * (1.0 + 2.0 * 3.0 * f32::EPSILON * 0.5);
-    if tnear <= tfar.min(tmax) {
-        tnear
-    } else {
-        f32::INFINITY
+/// Writes a 4-wide node holding `kids` (1 or 2 build nodes) after collapsing
+/// the largest interior grandchildren into it; returns its index.
+fn flatten(kids: &[&BuildNode], out: &mut Vec<Node>) -> u32 {
+    let mut lanes: Vec<&BuildNode> = kids.to_vec();
+    while lanes.len() < 4 {
+        // Open the interior child with the largest surface area.
+        let pick = lanes
+            .iter()
+            .enumerate()
+            .filter(|(_, k)| matches!(k, BuildNode::Interior { .. }))
+            .max_by(|a, b| {
+                a.1.bounds()
+                    .surface_area()
+                    .total_cmp(&b.1.bounds().surface_area())
+            })
+            .map(|(i, _)| i);
+        let Some(i) = pick else { break };
+        let BuildNode::Interior { children, .. } = lanes[i] else {
+            unreachable!()
+        };
+        lanes[i] = &children[0];
+        lanes.insert(i + 1, &children[1]);
     }
+    let idx = out.len();
+    out.push(EMPTY_NODE);
+    for (i, k) in lanes.iter().enumerate() {
+        let b = k.bounds();
+        let (child, count) = match k {
+            BuildNode::Leaf { start, count, .. } => (*start as u32, *count as u32),
+            BuildNode::Interior { children, .. } => {
+                (flatten(&[&children[0], &children[1]], out), 0)
+            }
+        };
+        let n = &mut out[idx];
+        for a in 0..3 {
+            n.planes[a][i] = b.min[a];
+            n.planes[a + 3][i] = b.max[a];
+        }
+        n.child[i] = child;
+        n.count[i] = count;
+    }
+    idx as u32
 }
 
 fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
@@ -365,36 +488,6 @@ fn partition(refs: &mut [PrimRef], pred: impl Fn(&PrimRef) -> bool) -> usize {
     i
 }
 
-fn flatten(node: &BuildNode, out: &mut Vec<Node>) -> u32 {
-    let idx = out.len() as u32;
-    match node {
-        BuildNode::Leaf {
-            bounds,
-            start,
-            count,
-        } => {
-            out.push(Node {
-                min: bounds.min.into(),
-                count: *count as u32,
-                max: bounds.max.into(),
-                offset: *start as u32,
-            });
-        }
-        BuildNode::Interior { bounds, children } => {
-            out.push(Node {
-                min: bounds.min.into(),
-                count: 0,
-                max: bounds.max.into(),
-                offset: 0,
-            });
-            flatten(&children[0], out);
-            let right = flatten(&children[1], out);
-            out[idx as usize].offset = right;
-        }
-    }
-    idx
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -416,7 +509,36 @@ mod tests {
     }
 
     #[test]
-    fn node_is_32_bytes() {
-        assert_eq!(std::mem::size_of::<Node>(), 32);
+    fn node_is_128_bytes() {
+        assert_eq!(std::mem::size_of::<Node>(), 128);
+    }
+
+    #[test]
+    fn nan_dropping_min_max() {
+        // The slab test relies on min/max returning the second operand on NaN.
+        let nan = Vec4::splat(f32::NAN);
+        assert_eq!(nan.max(Vec4::ONE), Vec4::ONE);
+        assert_eq!(nan.min(Vec4::ONE), Vec4::ONE);
+    }
+
+    #[test]
+    fn ray_in_box_face_plane() {
+        let b = Bvh::build(&[Aabb {
+            min: Vec3::new(0.0, 0.0, 0.0),
+            max: Vec3::new(1.0, 1.0, 1.0),
+        }]);
+        for (o, d) in [
+            (Vec3::new(-1.0, 0.0, 0.5), Vec3::X),
+            (Vec3::new(-1.0, 1.0, 1.0), Vec3::X),
+            (Vec3::new(2.0, 1.0, 0.0), -Vec3::X),
+            (Vec3::new(0.5, 0.0, 2.0), Vec3::new(0.0, -0.0, -1.0)),
+        ] {
+            assert!(b.any(&Ray::new(o, d), |_, _, _| true), "{o} {d}");
+        }
+        assert!(
+            !b.any(&Ray::new(Vec3::new(-1.0, 1.5, 0.5), Vec3::X), |_, _, _| {
+                true
+            })
+        );
     }
 }

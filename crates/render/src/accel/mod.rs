@@ -1,4 +1,5 @@
 //! Ray-scene acceleration: a binned-SAH BVH in pure Rust.
 
+pub mod bench;
 pub mod bvh;
 pub use bvh::Bvh;

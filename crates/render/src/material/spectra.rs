@@ -135,9 +135,12 @@ pub fn sampled_rgb(pairs: &[(f32, f32)]) -> Rgb {
         a.1 + t * (b.1 - a.1)
     };
     let (xyz, ysum) = integrate(eval);
-    // Normalise so a constant spectrum of 1 gives Y = 1; white point is equal-energy,
-    // close enough to D65 for reflectances and IORs.
-    xyz_to_linear_srgb([xyz[0] / ysum, xyz[1] / ysum, xyz[2] / ysum])
+    let rgb = xyz_to_linear_srgb([xyz[0] / ysum, xyz[1] / ysum, xyz[2] / ysum]);
+    // White-balance per channel (von Kries in RGB) so that a constant spectrum maps to
+    // grey: the equal-energy white point is pinkish in sRGB's D65 primaries.
+    let (wxyz, _) = integrate(|_| 1.0);
+    let white = xyz_to_linear_srgb([wxyz[0] / ysum, wxyz[1] / ysum, wxyz[2] / ysum]);
+    rgb / white
 }
 
 #[cfg(test)]
@@ -158,7 +161,10 @@ mod tests {
     fn constant_spectrum_is_near_grey() {
         let c = sampled_rgb(&[(400.0, 0.5), (700.0, 0.5)]);
         assert!((c.luminance() - 0.5).abs() < 0.02);
-        assert!((c.r - c.b).abs() < 0.12, "{c:?}");
+        assert!(
+            (c.r - c.b).abs() < 1e-3 && (c.g - 0.5).abs() < 1e-3,
+            "{c:?}"
+        );
     }
 
     #[test]
