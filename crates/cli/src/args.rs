@@ -61,6 +61,33 @@ pub struct RenderArgs {
     /// Scale each sample down so no component exceeds VALUE (biased; off by default).
     #[arg(long, value_name = "VALUE")]
     pub clamp: Option<f32>,
+    /// photon: caustics from `mis` (the seed's weights), `photons` only or `gather` rays only.
+    #[arg(long, value_name = "mis|photons|gather")]
+    pub caustics: Option<String>,
+    /// photon: MIS heuristic for the caustic weights.
+    #[arg(long, value_name = "balance|power")]
+    pub heuristic: Option<String>,
+    /// photon: alpha in q_1 at the first camera hit: `auto` (samples per pixel) or `1`.
+    #[arg(long, value_name = "auto|1")]
+    pub alpha: Option<String>,
+    /// photon: photons emitted for the global map.
+    #[arg(long, value_name = "N")]
+    pub photons: Option<u64>,
+    /// photon: photons emitted for the caustic map.
+    #[arg(long, value_name = "N")]
+    pub caustic_photons: Option<u64>,
+    /// photon: nearest photons per estimate (m_1).
+    #[arg(long, value_name = "M1")]
+    pub nearest: Option<usize>,
+    /// photon: final-gather rays per shading point (m_2).
+    #[arg(long, value_name = "M2")]
+    pub gather_rays: Option<u32>,
+    /// photon: largest photon search radius in scene units (0: 2% of the scene radius).
+    #[arg(long, value_name = "R")]
+    pub max_radius: Option<f32>,
+    /// photon: caustic density-estimation kernel.
+    #[arg(long, value_name = "none|cone")]
+    pub kernel: Option<String>,
     /// Print no progress, only warnings, errors and the summary.
     #[arg(short, long)]
     pub quiet: bool,

@@ -6,6 +6,7 @@ use anyhow::{bail, Context, Result};
 use lumis_math::SamplerKind;
 use lumis_render::image_io::{write_image, ImageFormat, RgbImage};
 use lumis_render::integrator::{render, RenderSettings};
+use lumis_render::load::photon::PhotonOverrides;
 use lumis_render::load::{load_path, load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -33,6 +34,18 @@ fn overrides(a: &RenderArgs) -> Result<BuildOverrides> {
         integrator: a.integrator.clone(),
         max_depth: a.maxdepth,
         sampler,
+        photon: PhotonOverrides {
+            caustics: a.caustics.clone(),
+            heuristic: a.heuristic.clone(),
+            alpha: a.alpha.clone(),
+            photons: a.photons,
+            caustic_photons: a.caustic_photons,
+            nearest: a.nearest,
+            gather_rays: a.gather_rays,
+            max_radius: a.max_radius,
+            kernel: a.kernel.clone(),
+            radiance_photons: None,
+        },
     })
 }
 
@@ -137,6 +150,17 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         out.rays as f64 / secs.max(1e-9) / 1e6,
         names.join(", ")
     );
+    if let Some(ps) = &out.photon_stats {
+        eprintln!(
+            "lumis: photons: {} global, {} caustic stored; tracing {:.2} s, maps {:.2} s, radiance photons {:.2} s, {:.1} MiB",
+            ps.global_stored,
+            ps.caustic_stored,
+            ps.trace_time.as_secs_f64(),
+            ps.build_time.as_secs_f64(),
+            ps.radiance_time.as_secs_f64(),
+            ps.memory_bytes as f64 / (1u64 << 20) as f64
+        );
+    }
     if out.bad_samples > 0 {
         let (x, y) = out.first_bad_pixel.unwrap_or((0, 0));
         eprintln!(

@@ -123,7 +123,37 @@ impl Bsdf {
     pub fn has_transmission(&self) -> bool {
         matches!(self, Bsdf::Dielectric(_))
     }
+
+    /// Non-delta but sharply peaked: a photon density estimate is blurry here,
+    /// so the photon integrator continues along the lobe instead of reading
+    /// the global map (METHOD.md section 4). Microfacet alpha below
+    /// [`GLOSSY_ALPHA`], or a Phong lobe with exponent above [`GLOSSY_EXPONENT`].
+    pub fn is_glossy(&self) -> bool {
+        match self {
+            Bsdf::Diffuse(_) => false,
+            Bsdf::Conductor(b) => {
+                !b.is_delta() && b.distrib.alpha_x.max(b.distrib.alpha_y) < GLOSSY_ALPHA
+            }
+            Bsdf::Dielectric(b) => {
+                !b.is_delta() && b.distrib.alpha_x.max(b.distrib.alpha_y) < GLOSSY_ALPHA
+            }
+            Bsdf::Phong(b) => b.exponent > GLOSSY_EXPONENT && b.ks.max_component() > 0.0,
+        }
+    }
+
+    /// Diffuse reflectance when the BSDF is Lambertian (for radiance photons).
+    pub fn diffuse_albedo(&self) -> Option<Rgb> {
+        match self {
+            Bsdf::Diffuse(d) => Some(d.r),
+            _ => None,
+        }
+    }
 }
+
+/// Microfacet roughness (alpha) below which a surface counts as glossy.
+pub const GLOSSY_ALPHA: f32 = 0.4;
+/// Phong exponent above which a surface counts as glossy.
+pub const GLOSSY_EXPONENT: f32 = 8.0;
 
 impl From<Diffuse> for Bsdf {
     fn from(b: Diffuse) -> Self {
@@ -214,6 +244,10 @@ impl SurfaceBsdf {
 
     pub fn is_delta(&self) -> bool {
         self.bsdf.is_delta()
+    }
+
+    pub fn is_glossy(&self) -> bool {
+        self.bsdf.is_glossy()
     }
 
     pub fn has_transmission(&self) -> bool {

@@ -18,6 +18,20 @@ pub fn sample_direct(
     sampler: &mut Sampler,
     rays: &mut u64,
 ) -> Rgb {
+    sample_direct_n(scene, hit, bsdf, wo, 1.0, sampler, rays)
+}
+
+/// As [`sample_direct`], weighted against `n_bsdf` BSDF samples taken at the
+/// same point (e.g. final-gather rays); `n_bsdf = 0` gives full weight.
+pub fn sample_direct_n(
+    scene: &Scene,
+    hit: &Hit,
+    bsdf: &SurfaceBsdf,
+    wo: Vec3,
+    n_bsdf: f32,
+    sampler: &mut Sampler,
+    rays: &mut u64,
+) -> Rgb {
     let ul = sampler.get_1d();
     let u = sampler.get_2d();
     let Some((li, pmf)) = scene.light_sampler.sample(ul) else {
@@ -51,7 +65,7 @@ pub fn sample_direct(
         return f * ls.li / light_pdf;
     }
     let bsdf_pdf = bsdf.pdf(wo, ls.wi, TransportMode::Radiance);
-    let w = power_heuristic(1.0, light_pdf, 1.0, bsdf_pdf);
+    let w = power_heuristic(1.0, light_pdf, n_bsdf, bsdf_pdf);
     f * ls.li * (w / light_pdf)
 }
 
@@ -65,6 +79,19 @@ pub fn emitted_mis(
     bsdf_pdf: f32,
     count_fully: bool,
 ) -> Rgb {
+    emitted_mis_n(scene, hit, ray, p_prev, 1.0, bsdf_pdf, count_fully)
+}
+
+/// As [`emitted_mis`] for one of `n_bsdf` BSDF samples taken at `p_prev`.
+pub fn emitted_mis_n(
+    scene: &Scene,
+    hit: &Hit,
+    ray: &Ray,
+    p_prev: Vec3,
+    n_bsdf: f32,
+    bsdf_pdf: f32,
+    count_fully: bool,
+) -> Rgb {
     let Some(li) = hit.light else {
         return Rgb::BLACK;
     };
@@ -75,7 +102,7 @@ pub fn emitted_mis(
     }
     let light_pdf = scene.light_sampler.pmf(li)
         * light.pdf_li(&scene.shapes, p_prev, ray.d, hit.geom.p, hit.geom.ng);
-    le * power_heuristic(1.0, bsdf_pdf, 1.0, light_pdf)
+    le * power_heuristic(n_bsdf, bsdf_pdf, 1.0, light_pdf)
 }
 
 /// Radiance of infinite lights along an escaped ray, MIS-weighted likewise.
@@ -83,6 +110,18 @@ pub fn escaped_mis(
     scene: &Scene,
     ray: &Ray,
     p_prev: Vec3,
+    bsdf_pdf: f32,
+    count_fully: bool,
+) -> Rgb {
+    escaped_mis_n(scene, ray, p_prev, 1.0, bsdf_pdf, count_fully)
+}
+
+/// As [`escaped_mis`] for one of `n_bsdf` BSDF samples taken at `p_prev`.
+pub fn escaped_mis_n(
+    scene: &Scene,
+    ray: &Ray,
+    p_prev: Vec3,
+    n_bsdf: f32,
     bsdf_pdf: f32,
     count_fully: bool,
 ) -> Rgb {
@@ -98,7 +137,7 @@ pub fn escaped_mis(
         } else {
             let light_pdf = scene.light_sampler.pmf(i)
                 * light.pdf_li(&scene.shapes, p_prev, ray.d, Vec3::ZERO, Vec3::ZERO);
-            l += le * power_heuristic(1.0, bsdf_pdf, 1.0, light_pdf);
+            l += le * power_heuristic(n_bsdf, bsdf_pdf, 1.0, light_pdf);
         }
     }
     l

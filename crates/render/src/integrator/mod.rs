@@ -8,6 +8,7 @@
 pub mod direct;
 pub mod lighting;
 pub mod path;
+pub mod photon;
 pub mod render;
 
 pub use render::{render, Progress, RenderOutcome, RenderSettings};
@@ -22,15 +23,18 @@ pub enum IntegratorKind {
     Path,
     /// Direct lighting only (through specular chains): a debugging aid.
     Direct,
+    /// Photon mapping with final gathering and MIS-combined caustics.
+    Photon,
 }
 
 impl IntegratorKind {
-    pub const NAMES: &'static [&'static str] = &["path", "direct"];
+    pub const NAMES: &'static [&'static str] = &["path", "direct", "photon"];
 
     pub fn from_name(name: &str) -> Option<IntegratorKind> {
         match name {
             "path" => Some(IntegratorKind::Path),
             "direct" => Some(IntegratorKind::Direct),
+            "photon" => Some(IntegratorKind::Photon),
             _ => None,
         }
     }
@@ -39,6 +43,7 @@ impl IntegratorKind {
         match self {
             IntegratorKind::Path => "path",
             IntegratorKind::Direct => "direct",
+            IntegratorKind::Photon => "photon",
         }
     }
 }
@@ -49,15 +54,26 @@ pub struct Integrator {
     /// pbrt-v4's meaning: the number of scattering events after the camera
     /// ray; 0 shows emitters only, 1 adds direct lighting.
     pub max_depth: u32,
+    /// Settings of the `photon` integrator (unused by the others).
+    pub photon: photon::PhotonSettings,
 }
 
 impl Integrator {
-    /// Radiance along a camera ray.
+    /// Radiance along a camera ray; `photon` must hold the photon context
+    /// for the `photon` integrator (see `render.rs`).
     #[inline]
-    pub fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler, rays: &mut u64) -> Rgb {
-        match self.kind {
-            IntegratorKind::Path => path::li(scene, ray, sampler, self.max_depth, rays),
-            IntegratorKind::Direct => direct::li(scene, ray, sampler, self.max_depth, rays),
+    pub fn li(
+        &self,
+        scene: &Scene,
+        photon: Option<&photon::gather::PhotonCtx>,
+        ray: Ray,
+        sampler: &mut Sampler,
+        rays: &mut u64,
+    ) -> Rgb {
+        match (self.kind, photon) {
+            (IntegratorKind::Photon, Some(ctx)) => photon::gather::li(ctx, ray, sampler, rays),
+            (IntegratorKind::Direct, _) => direct::li(scene, ray, sampler, self.max_depth, rays),
+            _ => path::li(scene, ray, sampler, self.max_depth, rays),
         }
     }
 }

@@ -5,7 +5,9 @@
 //! numbers depend only on (seed, pixel, index), so the image is bit-identical
 //! whatever the thread count.
 
-use super::Integrator;
+use super::photon::gather::PhotonCtx;
+use super::photon::PhotonMaps;
+use super::{Integrator, IntegratorKind};
 use crate::film::{Film, Filter, PixelBounds};
 use crate::scene::Scene;
 use lumis_math::{Sampler, SamplerKind, Vec2};
@@ -50,6 +52,8 @@ pub struct RenderOutcome {
     pub bad_samples: u64,
     pub first_bad_pixel: Option<(u32, u32)>,
     pub interrupted: bool,
+    /// Photon pass figures, for the `photon` integrator.
+    pub photon_stats: Option<super::photon::PhotonStats>,
 }
 
 /// Renders until the sample count or time budget is reached, or `cancel` is set.
@@ -89,7 +93,24 @@ fn render_in_pool(
     } else {
         settings.spp
     };
+    // The photon pass runs once, inside the time budget.
+    let maps = (integrator.kind == IntegratorKind::Photon)
+        .then(|| PhotonMaps::build(scene, &integrator.photon, settings.seed));
+    // alpha (seed, A.10) is the number of samples per pixel: known up front, or
+    // with only a time budget, predicted from the passes so far (1 for the first).
+    let mut alpha = if settings.spp > 0 {
+        settings.spp as f32
+    } else {
+        1.0
+    };
+    let mut pass_time_sum = Duration::ZERO;
     while done < limit {
+        let ctx = maps.as_ref().map(|m| PhotonCtx {
+            scene,
+            maps: m,
+            s: &integrator.photon,
+            alpha_first: alpha,
+        });
         if cancel.load(Ordering::Relaxed) {
             interrupted = true;
             break;
@@ -110,7 +131,8 @@ fn render_in_pool(
                         let off = settings.filter.sample(sampler.get_2d());
                         let p_film = Vec2::new(px as f32 + 0.5, py as f32 + 0.5) + off;
                         let ray = cam.generate_ray(p_film, sampler.get_2d());
-                        let mut l = integrator.li(scene, ray, &mut sampler, &mut local_rays);
+                        let mut l =
+                            integrator.li(scene, ctx.as_ref(), ray, &mut sampler, &mut local_rays);
                         if let Some(c) = settings.clamp {
                             let m = l.max_component();
                             if m > c {
@@ -143,10 +165,17 @@ fn render_in_pool(
             fraction,
             elapsed,
         });
+        let pass_time = pass_start.elapsed();
+        pass_time_sum += pass_time;
         if let Some(t) = settings.time_limit {
             // Stop when another pass of the same length would overrun the budget.
-            if elapsed + pass_start.elapsed() > t {
+            if elapsed + pass_time > t {
                 break;
+            }
+            if settings.spp == 0 {
+                let per_pass = pass_time_sum.as_secs_f64() / done as f64;
+                let left = (t.saturating_sub(elapsed)).as_secs_f64();
+                alpha = (done as f64 + (left / per_pass.max(1e-9)).floor()).max(1.0) as f32;
             }
         }
     }
@@ -160,5 +189,6 @@ fn render_in_pool(
         bad_samples: bad.load(Ordering::Relaxed),
         first_bad_pixel,
         interrupted,
+        photon_stats: maps.map(|m| m.stats),
     }
 }

@@ -5,6 +5,7 @@
 mod lights;
 mod materials;
 pub mod options;
+pub mod photon;
 mod shapes;
 mod spectrum;
 
@@ -45,6 +46,7 @@ pub struct BuildOverrides {
     pub integrator: Option<String>,
     pub max_depth: Option<u32>,
     pub sampler: Option<SamplerKind>,
+    pub photon: photon::PhotonOverrides,
 }
 
 /// The built-in default scene (also shipped as `scenes/default.pbrt`).

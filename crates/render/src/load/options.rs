@@ -168,6 +168,7 @@ pub fn build_options(
     let mut integrator = Integrator {
         kind: IntegratorKind::Path,
         max_depth: 5,
+        photon: Default::default(),
     };
     if let Some(e) = &desc.integrator {
         integrator.max_depth = e.params.get_int("maxdepth", 5)?.max(0) as u32;
@@ -195,11 +196,16 @@ pub fn build_options(
         for ignored in ["lightsampler", "regularize"] {
             e.params.mark_used(ignored);
         }
-        w.unused(
-            &e.params,
-            &format!("integrator \"{}\"", e.ty),
-            &["maxdepth"],
-        );
+        if integrator.kind == IntegratorKind::Photon {
+            integrator.photon =
+                super::photon::photon_settings(Some(e), &ov.photon, integrator.max_depth)?;
+        }
+        let known: &[&str] = if integrator.kind == IntegratorKind::Photon {
+            super::photon::PARAMS
+        } else {
+            &["maxdepth"]
+        };
+        w.unused(&e.params, &format!("integrator \"{}\"", e.ty), known);
     }
     if let Some(name) = &ov.integrator {
         integrator.kind = IntegratorKind::from_name(name).ok_or_else(|| {
@@ -209,6 +215,12 @@ pub fn build_options(
     }
     if let Some(d) = ov.max_depth {
         integrator.max_depth = d;
+    }
+    if integrator.kind == IntegratorKind::Photon {
+        let from_file = desc.integrator.as_ref().filter(|e| e.ty == "photon");
+        integrator.photon =
+            super::photon::photon_settings(from_file, &ov.photon, integrator.max_depth)?;
+        super::photon::check(&integrator.photon)?;
     }
     Ok(RenderOptions {
         resolution,

@@ -1,0 +1,310 @@
+//! Camera paths of the photon integrator: Whitted-style through perfectly
+//! specular surfaces, then at the first non-delta hit `x`: emission, direct
+//! light (light sampling MIS'd with the gather rays), caustics (caustic
+//! photons and gather rays through specular chains, weighted by the seed's
+//! `w_1`, `w_2`) and indirect light (gather rays reading the global map at
+//! their first non-delta hit; along glossy surfaces the same rules recurse).
+
+use super::weights::{q1, q2, w1, w2};
+use super::{Kernel, PhotonMaps, PhotonSettings};
+use crate::bsdf::{SurfaceBsdf, TransportMode};
+use crate::geometry::ray::spawn_ray;
+use crate::geometry::Ray;
+use crate::integrator::lighting::{emitted_mis_n, escaped_mis_n, sample_direct_n};
+use crate::scene::{Hit, Scene};
+use lumis_math::{Rgb, Sampler, Vec2, Vec3, PI};
+use std::cell::RefCell;
+
+/// Read-only state shared by all camera paths of a render.
+pub struct PhotonCtx<'a> {
+    pub scene: &'a Scene,
+    pub maps: &'a PhotonMaps,
+    pub s: &'a PhotonSettings,
+    /// `alpha` at the first non-delta camera hit: samples per pixel (or 1).
+    pub alpha_first: f32,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Vec<(u32, f32)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The global map's radius relative to the caustic map's.
+const GLOBAL_RADIUS_SCALE: f32 = 5.0;
+const CONE_K: f32 = 1.1;
+
+/// Radiance along a camera ray.
+pub fn li(ctx: &PhotonCtx, mut ray: Ray, sampler: &mut Sampler, rays: &mut u64) -> Rgb {
+    let scene = ctx.scene;
+    let mut l = Rgb::BLACK;
+    let mut beta = Rgb::WHITE;
+    for depth in 0..=ctx.s.max_depth {
+        *rays += 1;
+        let Some(hit) = scene.intersect(&ray) else {
+            return l + beta * escaped_mis_n(scene, &ray, ray.o, 0.0, 0.0, true);
+        };
+        l += beta * emitted_mis_n(scene, &hit, &ray, ray.o, 0.0, 0.0, true);
+        let bsdf = scene.materials[hit.material as usize].surface_bsdf(&hit.geom);
+        let wo = -ray.d;
+        if bsdf.is_delta() {
+            let (uc, u) = (sampler.get_1d(), sampler.get_2d());
+            let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+                return l;
+            };
+            beta *= bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+            ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
+            continue;
+        }
+        let alpha = if ctx.s.alpha_auto {
+            ctx.alpha_first
+        } else {
+            1.0
+        };
+        return l + beta
+            * shade(
+                ctx,
+                &hit,
+                &bsdf,
+                wo,
+                alpha,
+                ctx.s.gather_rays,
+                depth,
+                sampler,
+                rays,
+            );
+    }
+    l
+}
+
+/// Light leaving non-delta point `x` towards `wo`, excluding its emission.
+#[allow(clippy::too_many_arguments)]
+pub fn shade(
+    ctx: &PhotonCtx,
+    x: &Hit,
+    bsdf: &SurfaceBsdf,
+    wo: Vec3,
+    alpha: f32,
+    m2: u32,
+    depth: u32,
+    sampler: &mut Sampler,
+    rays: &mut u64,
+) -> Rgb {
+    let scene = ctx.scene;
+    let mut l = sample_direct_n(scene, x, bsdf, wo, m2 as f32, sampler, rays);
+    let (lc, delta_a) = caustic_photons(ctx, x, bsdf, wo, alpha, m2);
+    l += lc;
+    if m2 == 0 {
+        return l;
+    }
+    // Stratified gather directions: a rank-1 (Fibonacci) lattice over the
+    // square, rotated by one random offset per shading point.
+    let (jitter, jc) = (sampler.get_2d(), sampler.get_1d());
+    let n = m2 as f32;
+    let mut gathered = Rgb::BLACK;
+    for k in 0..m2 {
+        let kf = k as f32;
+        let u = Vec2::new(
+            ((kf + 0.5) / n + jitter.x).fract(),
+            (kf * 0.618_034 + jitter.y).fract(),
+        );
+        let uc = (jc + kf / n).fract();
+        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+            continue;
+        };
+        if bs.delta {
+            continue;
+        }
+        let cos_x = bs.wi.dot(x.geom.ns).abs();
+        let weight = bs.f * (cos_x / bs.pdf);
+        let g = Gather {
+            wi: bs.wi,
+            pdf: bs.pdf,
+            cos_x,
+            delta_a,
+            alpha,
+            m2,
+        };
+        gathered += weight * trace_gather(ctx, x, &g, depth, sampler, rays);
+    }
+    l + gathered / n
+}
+
+/// One final-gather direction and what its weights need.
+struct Gather {
+    wi: Vec3,
+    pdf: f32,
+    cos_x: f32,
+    delta_a: f32,
+    alpha: f32,
+    m2: u32,
+}
+
+/// Radiance arriving at `x` along a gather ray, with the MIS weights of the
+/// technique that found it applied.
+fn trace_gather(
+    ctx: &PhotonCtx,
+    x: &Hit,
+    g: &Gather,
+    depth: u32,
+    sampler: &mut Sampler,
+    rays: &mut u64,
+) -> Rgb {
+    let scene = ctx.scene;
+    let s = ctx.s;
+    let mut ray = spawn_ray(x.geom.p, x.geom.ng, g.wi);
+    let mut t = Rgb::WHITE;
+    let mut specular = false;
+    for d in depth + 1..=s.max_depth {
+        *rays += 1;
+        let Some(h) = scene.intersect(&ray) else {
+            if !specular {
+                return escaped_mis_n(scene, &ray, x.geom.p, g.m2 as f32, g.pdf, false);
+            }
+            // Caustic from an environment through a specular chain.
+            let mut sum = Rgb::BLACK;
+            for &i in &scene.infinite_lights {
+                let le = scene.lights[i as usize].le(ray.d);
+                sum += le * caustic_gather_weight(ctx, g, le.luminance());
+            }
+            return t * sum;
+        };
+        if let Some(li) = h.light {
+            if !specular {
+                return emitted_mis_n(scene, &h, &ray, x.geom.p, g.m2 as f32, g.pdf, false);
+            }
+            let le = scene.lights[li as usize].l(h.geom.ng, -ray.d);
+            return t * le * caustic_gather_weight(ctx, g, le.luminance());
+        }
+        let bsdf = scene.materials[h.material as usize].surface_bsdf(&h.geom);
+        let wo = -ray.d;
+        if bsdf.is_delta() {
+            let (uc, u) = (sampler.get_1d(), sampler.get_2d());
+            let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+                return Rgb::BLACK;
+            };
+            let weight = bs.f * (bs.wi.dot(h.geom.ns).abs() / bs.pdf);
+            // Roulette with survival = the bounce's transmittance gamma (measured
+            // without the radiance scaling of refraction, as the photons' is),
+            // so gamma cancels between q_1 and q_2 (seed, A.7).
+            let eta2 = if bs.transmission {
+                bs.eta * bs.eta
+            } else {
+                1.0
+            };
+            let gamma = (weight * eta2).luminance().min(1.0);
+            if !(gamma > 0.0) || sampler.get_1d() >= gamma {
+                return Rgb::BLACK;
+            }
+            t *= weight / gamma;
+            specular = true;
+            ray = spawn_ray(h.geom.p, h.geom.ng, bs.wi);
+            continue;
+        }
+        if bsdf.is_glossy() && d < s.max_depth {
+            return t * shade(ctx, &h, &bsdf, wo, 1.0, 1, d, sampler, rays);
+        }
+        return t * global_radiance(ctx, &h, &bsdf, wo);
+    }
+    Rgb::BLACK
+}
+
+/// `w_2` of a gather ray that reached an emitter of luminance `le` through a specular chain.
+fn caustic_gather_weight(ctx: &PhotonCtx, g: &Gather, le: f32) -> f32 {
+    let n = ctx.maps.caustic.emitted() as f64;
+    let q_1 = q1(n, le, g.cos_x, g.delta_a, ctx.maps.phi, g.alpha);
+    let q_2 = q2(g.m2, g.pdf);
+    w2(q_1, q_2, ctx.s.caustics, ctx.s.heuristic)
+}
+
+/// The caustic photon estimate at `x`, each photon weighted by `w_1`; also
+/// returns the disc area `DeltaA` of the query, which the gather rays share.
+fn caustic_photons(
+    ctx: &PhotonCtx,
+    x: &Hit,
+    bsdf: &SurfaceBsdf,
+    wo: Vec3,
+    alpha: f32,
+    m2: u32,
+) -> (Rgb, f32) {
+    let map = &ctx.maps.caustic;
+    let s = ctx.s;
+    SCRATCH.with(|cell| {
+        let mut found = cell.borrow_mut();
+        found.clear();
+        let r2 = map.knn(x.geom.p, s.nearest, ctx.maps.max_radius, &mut found);
+        let delta_a = PI * r2;
+        if found.is_empty() || r2 <= 0.0 {
+            return (Rgb::BLACK, delta_a);
+        }
+        let n = map.emitted() as f64;
+        let r = r2.sqrt();
+        let skip = boundary_photon(&found, s.nearest, r2);
+        let mut sum = Rgb::BLACK;
+        for (j, &(i, d2)) in found.iter().enumerate() {
+            if Some(j) == skip {
+                continue;
+            }
+            let ph = map.photon(i);
+            let wj = ph.dir();
+            let f = bsdf.eval(wo, wj, TransportMode::Radiance);
+            if f.is_black() {
+                continue;
+            }
+            let q_1 = q1(n, ph.le(), wj.dot(x.geom.ns), delta_a, ctx.maps.phi, alpha);
+            let q_2 = q2(m2, bsdf.pdf(wo, wj, TransportMode::Radiance));
+            let w = w1(q_1, q_2, s.caustics, s.heuristic);
+            if w == 0.0 {
+                continue;
+            }
+            let kw = match s.kernel {
+                Kernel::None => 1.0,
+                Kernel::Cone => (1.0 - d2.sqrt() / (CONE_K * r)) / (1.0 - 2.0 / (3.0 * CONE_K)),
+            };
+            sum += f * ph.power() * (w * kw);
+        }
+        (sum / delta_a, delta_a)
+    })
+}
+
+/// Radiance leaving non-delta `y` towards `wo` from the global photon map.
+fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rgb {
+    let n = if y.geom.ng.dot(wo) < 0.0 {
+        -y.geom.ng
+    } else {
+        y.geom.ng
+    };
+    let radius = ctx.maps.max_radius * GLOBAL_RADIUS_SCALE;
+    if let (Some(rp), Some(albedo)) = (&ctx.maps.radiance, bsdf.bsdf.diffuse_albedo()) {
+        if let Some(e) = rp.irradiance(y.geom.p, n, radius) {
+            return e * albedo * (1.0 / PI);
+        }
+    }
+    let map = &ctx.maps.global;
+    SCRATCH.with(|cell| {
+        let mut found = cell.borrow_mut();
+        found.clear();
+        let r2 = map.knn(y.geom.p, ctx.s.nearest, radius, &mut found);
+        if found.is_empty() || r2 <= 0.0 {
+            return Rgb::BLACK;
+        }
+        let skip = boundary_photon(&found, ctx.s.nearest, r2);
+        let mut sum = Rgb::BLACK;
+        for (j, &(i, _)) in found.iter().enumerate() {
+            if Some(j) != skip {
+                let ph = map.photon(i);
+                sum += bsdf.eval(wo, ph.dir(), TransportMode::Radiance) * ph.power();
+            }
+        }
+        sum / (PI * r2)
+    })
+}
+
+/// When the disc's radius is set by the k-th nearest photon, that photon lies
+/// on the boundary: summing all k over `pi r_k^2` overestimates the density by
+/// k / (k - 1) on average (for a locally uniform density). Leaving the
+/// boundary photon out makes the estimate unbiased there.
+fn boundary_photon(found: &[(u32, f32)], k: usize, r2: f32) -> Option<usize> {
+    if found.len() < k || k < 2 {
+        return None;
+    }
+    found.iter().position(|&(_, d2)| d2 == r2)
+}

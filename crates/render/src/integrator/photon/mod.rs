@@ -1,0 +1,200 @@
+//! The `photon` integrator: photon mapping with final gathering, where the
+//! caustic part is estimated twice (caustic photon map and final-gather rays)
+//! and combined per sample with the seed's weights (`../shared/METHOD.md`).
+//!
+//! Orchestration is in [`PhotonMaps::build`] (photon passes, map building)
+//! and `render.rs` (pixel passes); per-path tracing in `trace.rs` (photons)
+//! and `gather.rs` (camera paths); settings here; weights in `weights.rs`.
+
+pub mod gather;
+pub mod map;
+pub mod photon;
+pub mod radiance;
+pub mod trace;
+pub mod weights;
+
+use crate::scene::Scene;
+use map::PhotonMap;
+use radiance::RadiancePhotons;
+use std::time::{Duration, Instant};
+pub use weights::{CausticMode, Heuristic};
+
+/// Density-estimation filter for the caustic photons.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// Constant over the disc: `sum f Phi / (pi r^2)`.
+    None,
+    /// Jensen's cone filter with k = 1.1: weight `1 - d / (k r)`, normalised by `1 - 2 / (3 k)`.
+    Cone,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhotonSettings {
+    /// Photons emitted for the global map.
+    pub global_photons: u64,
+    /// Photons emitted for the caustic map (only `L S+ D` paths are stored).
+    pub caustic_photons: u64,
+    /// `m_1`: nearest photons per estimate.
+    pub nearest: usize,
+    /// `m_2`: final-gather rays at the first non-delta camera hit.
+    pub gather_rays: u32,
+    /// Largest photon search radius (scene units); 0 = 2% of the scene's bounding radius.
+    pub max_radius: f32,
+    pub caustics: CausticMode,
+    pub heuristic: Heuristic,
+    /// `alpha` in q_1 at the first non-delta camera hit: samples per pixel (true) or 1 (false).
+    pub alpha_auto: bool,
+    pub max_depth: u32,
+    pub kernel: Kernel,
+    /// Read the global map through Christensen's precomputed radiance photons
+    /// (true) or by direct k-nearest estimation (false).
+    pub radiance_photons: bool,
+}
+
+impl Default for PhotonSettings {
+    fn default() -> Self {
+        PhotonSettings {
+            global_photons: 200_000,
+            caustic_photons: 1_000_000,
+            nearest: 50,
+            gather_rays: 16,
+            max_radius: 0.0,
+            caustics: CausticMode::Mis,
+            heuristic: Heuristic::Balance,
+            alpha_auto: true,
+            max_depth: 8,
+            kernel: Kernel::None,
+            radiance_photons: true,
+        }
+    }
+}
+
+/// Bytes per stored photon plus kd-tree overhead, and per global photon the
+/// normal kept for radiance photons; used for the memory estimate.
+pub const BYTES_PER_PHOTON_ESTIMATE: u64 = 24 + 16 + 12;
+
+/// Estimated peak memory of the photon maps, in bytes (an upper bound: every
+/// emitted photon stored up to `max_depth` times for the global map).
+pub fn memory_estimate(s: &PhotonSettings) -> u64 {
+    let global = s
+        .global_photons
+        .saturating_mul(s.max_depth.clamp(1, 4) as u64);
+    (global.saturating_add(s.caustic_photons)).saturating_mul(BYTES_PER_PHOTON_ESTIMATE)
+}
+
+/// Memory available to this process, from /proc/meminfo (None if unknown).
+pub fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Refuses photon budgets that would not fit in memory, naming the parameter.
+pub fn check_memory(s: &PhotonSettings) -> Result<(), String> {
+    let need = memory_estimate(s);
+    if let Some(avail) = available_memory() {
+        if need > avail / 10 * 8 {
+            let which = if s.caustic_photons > s.global_photons {
+                "caustic-photons (causticphotons)"
+            } else {
+                "photons"
+            };
+            return Err(format!(
+                "the photon maps would need about {:.1} GiB but only {:.1} GiB of memory is available; lower --{which}",
+                need as f64 / (1u64 << 30) as f64,
+                avail as f64 / (1u64 << 30) as f64
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Timing and counts of the photon passes, for the summary and benchmarks.
+#[derive(Clone, Debug, Default)]
+pub struct PhotonStats {
+    pub global_stored: usize,
+    pub caustic_stored: usize,
+    pub trace_time: Duration,
+    pub build_time: Duration,
+    pub radiance_time: Duration,
+    pub memory_bytes: usize,
+}
+
+/// Everything the camera pass needs from the photon pass.
+pub struct PhotonMaps {
+    pub global: PhotonMap,
+    pub caustic: PhotonMap,
+    pub radiance: Option<RadiancePhotons>,
+    /// Total emitted power `Phi` (luminance) of all lights.
+    pub phi: f32,
+    pub max_radius: f32,
+    pub stats: PhotonStats,
+}
+
+impl PhotonMaps {
+    pub fn build(scene: &Scene, s: &PhotonSettings, seed: u64) -> PhotonMaps {
+        let phi: f32 = scene
+            .lights
+            .iter()
+            .map(|l| l.power(&scene.shapes).luminance())
+            .sum();
+        let max_radius = if s.max_radius > 0.0 {
+            s.max_radius
+        } else {
+            0.02 * scene.bounds.bounding_sphere().1.max(1e-6)
+        };
+        let t0 = Instant::now();
+        let g = trace::trace_photons(
+            scene,
+            s.global_photons,
+            trace::MapKind::Global,
+            seed,
+            s.max_depth,
+        );
+        let c = trace::trace_photons(
+            scene,
+            s.caustic_photons,
+            trace::MapKind::Caustic,
+            seed ^ 0x5eed,
+            s.max_depth,
+        );
+        let trace_time = t0.elapsed();
+        let t1 = Instant::now();
+        let global = PhotonMap::build(g.photons, s.global_photons);
+        let caustic = PhotonMap::build(c.photons, s.caustic_photons);
+        let build_time = t1.elapsed();
+        let t2 = Instant::now();
+        let radiance = if s.radiance_photons && !global.is_empty() {
+            Some(RadiancePhotons::build(
+                &global,
+                &g.normals,
+                4,
+                s.nearest,
+                max_radius * 2.0,
+            ))
+        } else {
+            None
+        };
+        let radiance_time = t2.elapsed();
+        let memory_bytes = global.memory_bytes()
+            + caustic.memory_bytes()
+            + radiance.as_ref().map_or(0, |r| r.memory_bytes());
+        let stats = PhotonStats {
+            global_stored: global.len(),
+            caustic_stored: caustic.len(),
+            trace_time,
+            build_time,
+            radiance_time,
+            memory_bytes,
+        };
+        PhotonMaps {
+            global,
+            caustic,
+            radiance,
+            phi,
+            max_radius,
+            stats,
+        }
+    }
+}

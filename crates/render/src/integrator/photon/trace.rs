@@ -1,0 +1,154 @@
+//! Photon tracing: parallel, deterministic for a given seed (photon `i`
+//! draws its random numbers from a stream keyed by `i` alone, and chunks are
+//! concatenated in order).
+
+use super::photon::Photon;
+use crate::bsdf::TransportMode;
+use crate::geometry::ray::spawn_ray;
+use crate::scene::Scene;
+use lumis_math::{Rgb, Sampler, SamplerKind, Vec3};
+use rayon::prelude::*;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapKind {
+    /// Every photon hit on a non-delta surface.
+    Global,
+    /// Only paths `L S+` ending on a non-delta surface (one or more perfectly
+    /// specular bounces, no other bounce); paths end there.
+    Caustic,
+}
+
+pub struct Traced {
+    pub photons: Vec<Photon>,
+    /// Surface normal (facing the photon's side) where each photon was stored.
+    pub normals: Vec<Vec3>,
+}
+
+const CHUNK: u64 = 4096;
+
+pub fn trace_photons(
+    scene: &Scene,
+    n_emit: u64,
+    kind: MapKind,
+    seed: u64,
+    max_depth: u32,
+) -> Traced {
+    if n_emit == 0 || scene.light_sampler.is_empty() {
+        return Traced {
+            photons: Vec::new(),
+            normals: Vec::new(),
+        };
+    }
+    let chunks = n_emit.div_ceil(CHUNK);
+    let parts: Vec<Traced> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let mut out = Traced {
+                photons: Vec::new(),
+                normals: Vec::new(),
+            };
+            let mut sampler = Sampler::new(SamplerKind::Independent, seed);
+            let mut rays = 0u64;
+            for i in c * CHUNK..((c + 1) * CHUNK).min(n_emit) {
+                sampler.start_stream(i, 0);
+                trace_one(
+                    scene,
+                    n_emit,
+                    kind,
+                    max_depth,
+                    &mut sampler,
+                    &mut out,
+                    &mut rays,
+                );
+            }
+            scene.count_rays(rays);
+            out
+        })
+        .collect();
+    let total: usize = parts.iter().map(|p| p.photons.len()).sum();
+    let mut all = Traced {
+        photons: Vec::with_capacity(total),
+        normals: Vec::with_capacity(total),
+    };
+    for p in parts {
+        all.photons.extend(p.photons);
+        all.normals.extend(p.normals);
+    }
+    all
+}
+
+fn trace_one(
+    scene: &Scene,
+    n_emit: u64,
+    kind: MapKind,
+    max_depth: u32,
+    sampler: &mut Sampler,
+    out: &mut Traced,
+    rays: &mut u64,
+) {
+    let Some((li, pmf)) = scene.light_sampler.sample(sampler.get_1d()) else {
+        return;
+    };
+    let light = &scene.lights[li as usize];
+    let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
+    let Some(le) = light.sample_le(&scene.shapes, u1, u2) else {
+        return;
+    };
+    let mut power: Rgb = le.flux_weight() / (pmf * n_emit as f32);
+    if !power.is_finite() || power.is_black() {
+        return;
+    }
+    // Emitted luminance at the origin; infinite for delta lights (the seed's L_e).
+    let le_lum = if light.is_delta() {
+        f32::INFINITY
+    } else {
+        le.le.luminance()
+    };
+    let mut ray = le.ray;
+    let mut specular_only = true;
+    for depth in 0..=max_depth {
+        *rays += 1;
+        let Some(hit) = scene.intersect(&ray) else {
+            return;
+        };
+        let bsdf = scene.materials[hit.material as usize].surface_bsdf(&hit.geom);
+        let wo = -ray.d;
+        if !bsdf.is_delta() {
+            let n = if hit.geom.ng.dot(wo) < 0.0 {
+                -hit.geom.ng
+            } else {
+                hit.geom.ng
+            };
+            match kind {
+                MapKind::Global => {
+                    out.photons.push(Photon::new(hit.geom.p, power, wo, le_lum));
+                    out.normals.push(n);
+                }
+                MapKind::Caustic => {
+                    if depth > 0 && specular_only {
+                        out.photons.push(Photon::new(hit.geom.p, power, wo, le_lum));
+                        out.normals.push(n);
+                    }
+                    return;
+                }
+            }
+        }
+        let uc = sampler.get_1d();
+        let u = sampler.get_2d();
+        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Importance) else {
+            return;
+        };
+        let weight = bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+        // Russian roulette with survival = the bounce's transmittance, so the
+        // photon's power keeps its luminance (the seed's gamma).
+        let survive = weight.luminance().min(1.0);
+        if !(survive > 0.0) || sampler.get_1d() >= survive {
+            return;
+        }
+        power *= weight / survive;
+        if !bs.delta {
+            specular_only = false;
+        }
+        ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
+    }
+}

@@ -1,0 +1,167 @@
+//! The seed's multiple-importance weights for caustics (appendix A.8-A.10):
+//! `w_i = q_i / (q_1 + q_2)` with
+//! `q_1 = N L_e cos(theta) DeltaA / (Phi alpha)` (photon density technique)
+//! and `q_2 = m_2 p_2` (final-gather rays sampled from the BSDF).
+
+/// How the two caustic techniques are combined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CausticMode {
+    /// The seed's weights.
+    Mis,
+    /// Photon map only: `w_1 = 1`, `w_2 = 0`.
+    Photons,
+    /// Final-gather rays only: `w_1 = 0`, `w_2 = 1`.
+    Gather,
+}
+
+impl CausticMode {
+    pub fn from_name(s: &str) -> Option<CausticMode> {
+        match s {
+            "mis" => Some(CausticMode::Mis),
+            "photons" => Some(CausticMode::Photons),
+            "gather" => Some(CausticMode::Gather),
+            _ => None,
+        }
+    }
+    pub fn name(&self) -> &'static str {
+        match self {
+            CausticMode::Mis => "mis",
+            CausticMode::Photons => "photons",
+            CausticMode::Gather => "gather",
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Heuristic {
+    /// `w_i = q_i / (q_1 + q_2)` (the seed's Equation 1).
+    Balance,
+    /// `w_i = q_i^2 / (q_1^2 + q_2^2)`.
+    Power,
+}
+
+impl Heuristic {
+    pub fn from_name(s: &str) -> Option<Heuristic> {
+        match s {
+            "balance" => Some(Heuristic::Balance),
+            "power" => Some(Heuristic::Power),
+            _ => None,
+        }
+    }
+    pub fn name(&self) -> &'static str {
+        match self {
+            Heuristic::Balance => "balance",
+            Heuristic::Power => "power",
+        }
+    }
+}
+
+/// `q_1 = N L_e cos(theta) DeltaA / (Phi alpha)` (A.10). `L_e = infinity`
+/// (delta lights) gives infinity.
+#[inline]
+pub fn q1(n_emitted: f64, le: f32, cos_theta: f32, delta_a: f32, phi: f32, alpha: f32) -> f32 {
+    if le.is_infinite() {
+        return f32::INFINITY;
+    }
+    (n_emitted * le as f64 * cos_theta.abs() as f64 * delta_a as f64 / (phi as f64 * alpha as f64))
+        as f32
+}
+
+/// `q_2 = m_2 p_2` (A.9): `p_2` is the BSDF sampling density of the direction.
+#[inline]
+pub fn q2(m2: u32, p2: f32) -> f32 {
+    m2 as f32 * p2.max(0.0)
+}
+
+/// Weight of the photon technique for a sample with these `q`s.
+#[inline]
+pub fn w1(q1: f32, q2: f32, mode: CausticMode, h: Heuristic) -> f32 {
+    match mode {
+        CausticMode::Photons => 1.0,
+        CausticMode::Gather => 0.0,
+        CausticMode::Mis => {
+            if q1.is_infinite() || q2 <= 0.0 {
+                // Delta lights (gather rays never reach them) and directions the
+                // BSDF cannot sample: only photons can carry them.
+                return 1.0;
+            }
+            match h {
+                Heuristic::Balance => q1 / (q1 + q2),
+                Heuristic::Power => {
+                    let r = q2 / q1.max(f32::MIN_POSITIVE);
+                    1.0 / (1.0 + r * r)
+                }
+            }
+        }
+    }
+}
+
+/// Weight of the final-gather technique: `1 - w1` for the same sample.
+#[inline]
+pub fn w2(q1: f32, q2: f32, mode: CausticMode, h: Heuristic) -> f32 {
+    1.0 - w1(q1, q2, mode, h)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn q1_and_q2_match_hand_computed_values() {
+        // N = 1e5, L_e = 20, cos = 0.5, DeltaA = pi 0.01^2, Phi = 300, alpha = 4:
+        // q1 = 1e5 * 20 * 0.5 * 3.14159e-4 / (300 * 4) = 0.261799
+        let v = q1(1e5, 20.0, 0.5, std::f32::consts::PI * 1e-4, 300.0, 4.0);
+        assert!((v - 0.261_799).abs() < 1e-5, "{v}");
+        assert_eq!(q2(16, 0.25), 4.0);
+        // Balance: w1 = 0.261799 / (0.261799 + 4)
+        let w = w1(v, 4.0, CausticMode::Mis, Heuristic::Balance);
+        assert!((w - 0.061_429).abs() < 1e-5, "{w}");
+        // Power: w1 = q1^2 / (q1^2 + q2^2)
+        let w = w1(v, 4.0, CausticMode::Mis, Heuristic::Power);
+        assert!((w - 0.068_539 / (0.068_539 + 16.0)).abs() < 1e-6, "{w}");
+    }
+
+    #[test]
+    fn weights_sum_to_one() {
+        for &(a, b) in &[
+            (0.1f32, 3.0f32),
+            (5.0, 0.2),
+            (1.0, 1.0),
+            (1e-8, 1e8),
+            (1e30, 1e-30),
+        ] {
+            for h in [Heuristic::Balance, Heuristic::Power] {
+                for m in [CausticMode::Mis, CausticMode::Photons, CausticMode::Gather] {
+                    let s = w1(a, b, m, h) + w2(a, b, m, h);
+                    assert!((s - 1.0).abs() < 1e-6, "{a} {b} {h:?} {m:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn delta_lights_and_unsampleable_directions_go_to_photons() {
+        let inf = q1(1e5, f32::INFINITY, 0.7, 0.01, 10.0, 1.0);
+        assert!(inf.is_infinite());
+        assert_eq!(w1(inf, 3.0, CausticMode::Mis, Heuristic::Balance), 1.0);
+        assert_eq!(w1(inf, 3.0, CausticMode::Mis, Heuristic::Power), 1.0);
+        assert_eq!(
+            w1(0.5, q2(16, 0.0), CausticMode::Mis, Heuristic::Balance),
+            1.0
+        );
+        assert_eq!(w2(0.5, 0.0, CausticMode::Mis, Heuristic::Power), 0.0);
+    }
+
+    #[test]
+    fn baselines_select_one_technique() {
+        assert_eq!(w1(0.3, 0.7, CausticMode::Photons, Heuristic::Balance), 1.0);
+        assert_eq!(w2(0.3, 0.7, CausticMode::Gather, Heuristic::Balance), 1.0);
+    }
+
+    #[test]
+    fn alpha_scales_q1_only() {
+        let a1 = q1(1e4, 2.0, 1.0, 0.1, 5.0, 1.0);
+        let a8 = q1(1e4, 2.0, 1.0, 0.1, 5.0, 8.0);
+        assert!((a1 / a8 - 8.0).abs() < 1e-4);
+    }
+}

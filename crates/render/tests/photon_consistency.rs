@@ -1,0 +1,164 @@
+//! The `photon` integrator against `path` on caustic scenes (METHOD.md §5):
+//! a glass sphere over a diffuse floor and over a glossy rough-aluminium floor,
+//! lit by a small bright area light. In the caustic region, the mean radiance
+//! of each caustic mode (mis, photons, gather) must agree with a committed
+//! high-sample `path` reference within a bound that shrinks as the photon
+//! count grows, and the three modes must agree with each other.
+//!
+//! Regenerate the references with:
+//!   cargo test --release -p lumis-render --test photon_consistency -- --ignored make_references
+
+mod support;
+
+use lumis_render::film::Film;
+use lumis_render::image_io::{read_image, write_image, RgbImage};
+use lumis_render::load::{load_path, BuildOverrides};
+use std::path::PathBuf;
+use support::*;
+
+/// The caustic region of the 64x64 image (fractions x0, x1, y0, y1).
+const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
+const REF_SPP: u32 = 262_144;
+
+fn scene_path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/test")
+        .join(format!("{name}.pbrt"))
+}
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+fn ov(integrator: &str) -> BuildOverrides {
+    BuildOverrides {
+        crop: Some(CROP),
+        integrator: Some(integrator.into()),
+        ..Default::default()
+    }
+}
+
+/// Region mean (channel average) and its standard error from per-pixel variances.
+fn region(film: &Film) -> (f64, f64) {
+    let n = film.pixels.len() as f64;
+    let mean = film
+        .pixels
+        .iter()
+        .map(|p| (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0)
+        .sum::<f64>()
+        / n;
+    let var: f64 = film
+        .pixels
+        .iter()
+        .map(|p| p.variance_of_mean().average() as f64)
+        .sum::<f64>()
+        / (n * n);
+    (mean, var.sqrt())
+}
+
+#[test]
+#[ignore = "writes the committed references; run by hand"]
+fn make_references() {
+    for name in ["caustic_sphere", "caustic_sphere_glossy"] {
+        let l = load_path(&scene_path(name), &ov("path")).unwrap();
+        let out = render_loaded(&l, REF_SPP, 2024, 0);
+        let (w, h) = (out.film.width(), out.film.height());
+        let cmd = "cargo test --release -p lumis-render --test photon_consistency -- --ignored make_references";
+        for (suffix, px) in [
+            ("mean", out.film.mean_image()),
+            ("var", out.film.variance_image()),
+        ] {
+            let mut img = RgbImage::new(w, h, px);
+            img.metadata = vec![
+                ("lumis:spp".into(), REF_SPP.to_string()),
+                ("lumis:integrator".into(), "path".into()),
+                ("lumis:command".into(), cmd.into()),
+            ];
+            write_image(&data(&format!("{name}_ref_{suffix}.exr")), &img, 0.0).unwrap();
+        }
+    }
+}
+
+fn reference(name: &str) -> (f64, f64) {
+    let m = read_image(&data(&format!("{name}_ref_mean.exr"))).expect("committed reference");
+    let v =
+        read_image(&data(&format!("{name}_ref_var.exr"))).expect("committed reference variance");
+    let n = (m.width * m.height) as f64;
+    let mean = m.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n);
+    let var = v.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n * n);
+    (mean, var.sqrt())
+}
+
+fn photon_region(name: &str, mode: &str, caustic_photons: u64, spp: u32) -> (f64, f64) {
+    let mut o = ov("photon");
+    o.photon.caustics = Some(mode.into());
+    o.photon.caustic_photons = Some(caustic_photons);
+    let l = load_path(&scene_path(name), &o).unwrap();
+    region(&render_loaded(&l, spp, 7, 0).film)
+}
+
+fn check_scene(name: &str, spp: u32) {
+    let (r, r_se) = reference(name);
+    eprintln!("{name}: path reference {r:.4} ± {r_se:.4}");
+    let mut means = Vec::new();
+    for mode in ["mis", "photons", "gather"] {
+        let mut errs = Vec::new();
+        for (n, bias_bound) in [(100_000u64, 0.04f64), (1_000_000, 0.025)] {
+            let (m, se) = photon_region(name, mode, n, spp);
+            let err = (m - r) / r;
+            let noise = (se * se + r_se * r_se).sqrt() / r;
+            eprintln!(
+                "  {mode:8} {n:>8} caustic photons: {m:.4} ± {se:.4} ({:+.2}%, noise {:.2}%)",
+                err * 100.0,
+                noise * 100.0
+            );
+            // Photon-map bias (blur of the density estimate) plus 4 standard errors.
+            assert!(
+                err.abs() < bias_bound + 4.0 * noise,
+                "{name} {mode} N={n}: {:+.2}% off the path reference",
+                err * 100.0
+            );
+            errs.push((err, noise));
+            means.push((mode, n, m, se));
+        }
+        if mode == "photons" {
+            // The photon-only estimate's bias falls as the photon count grows.
+            let ((e0, _), (e1, n1)) = (errs[0], errs[1]);
+            assert!(
+                e1.abs() < e0.abs() + 2.0 * n1,
+                "{name}: error did not fall with more photons ({e0:+.4} -> {e1:+.4})"
+            );
+        }
+    }
+    // No mode double-counts or drops the caustic: at 1M photons all three agree.
+    let at = |mode: &str| {
+        means
+            .iter()
+            .find(|m| m.0 == mode && m.1 == 1_000_000)
+            .map(|m| (m.2, m.3))
+            .unwrap()
+    };
+    let (mis, mis_se) = at("mis");
+    for other in ["photons", "gather"] {
+        let (o, o_se) = at(other);
+        let d = (mis - o) / mis;
+        let noise = (mis_se * mis_se + o_se * o_se).sqrt() / mis;
+        assert!(
+            d.abs() < 0.05 + 4.0 * noise,
+            "{name}: mis and {other} differ by {:+.2}%",
+            d * 100.0
+        );
+    }
+}
+
+#[test]
+fn diffuse_floor_caustic_matches_path() {
+    check_scene("caustic_sphere", 64);
+}
+
+#[test]
+fn glossy_floor_caustic_matches_path() {
+    check_scene("caustic_sphere_glossy", 64);
+}
