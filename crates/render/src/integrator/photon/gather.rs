@@ -167,12 +167,17 @@ fn trace_gather(
             }
             return t * sum;
         };
+        // Emission found here: direct light (MIS with light sampling) or, after
+        // a specular chain, a caustic sample (the seed's w_2). The surface may
+        // also reflect, which the code below adds.
+        let mut emitted = Rgb::BLACK;
         if let Some(li) = h.light {
-            if !specular {
-                return emitted_mis_n(scene, &h, &ray, x.geom.p, g.m2 as f32, g.pdf, false);
-            }
-            let le = scene.lights[li as usize].l(h.geom.ng, -ray.d);
-            return t * le * caustic_gather_weight(ctx, g, le.luminance());
+            emitted = if !specular {
+                emitted_mis_n(scene, &h, &ray, x.geom.p, g.m2 as f32, g.pdf, false)
+            } else {
+                let le = scene.lights[li as usize].l(h.geom.ng, -ray.d);
+                le * caustic_gather_weight(ctx, g, le.luminance())
+            };
         }
         let bsdf = scene.materials[h.material as usize].surface_bsdf(&h.geom);
         let wo = -ray.d;
@@ -192,7 +197,10 @@ fn trace_gather(
             };
             let gamma = (weight * eta2).luminance().min(1.0);
             if !(gamma > 0.0) || sampler.get_1d() >= gamma {
-                return Rgb::BLACK;
+                return t * emitted;
+            }
+            if !emitted.is_black() {
+                return t * emitted; // a specular emitter: its emission ends the chain
             }
             t *= weight / gamma;
             specular = true;
@@ -200,9 +208,9 @@ fn trace_gather(
             continue;
         }
         if bsdf.is_glossy() && d < s.max_depth {
-            return t * shade(ctx, &h, &bsdf, wo, 1.0, 1, d, sampler, rays);
+            return t * (emitted + shade(ctx, &h, &bsdf, wo, 1.0, 1, d, sampler, rays));
         }
-        return t * global_radiance(ctx, &h, &bsdf, wo);
+        return t * (emitted + global_radiance(ctx, &h, &bsdf, wo));
     }
     Rgb::BLACK
 }
