@@ -18,6 +18,15 @@ pub struct Cli {
 pub enum Command {
     /// Render a pbrt-v4 scene (the built-in default scene if none is given).
     Render(RenderArgs),
+    /// Measure BVH, path-tracing and photon-mapping speed on this machine.
+    Bench(BenchArgs),
+}
+
+#[derive(Args, Debug, Default, Clone)]
+pub struct BenchArgs {
+    /// Smaller sizes (100k triangles, 128x128 images) for a quick look.
+    #[arg(long)]
+    pub quick: bool,
 }
 
 #[derive(Args, Debug, Default, Clone)]

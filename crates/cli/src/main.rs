@@ -1,6 +1,7 @@
 //! The `lumis` binary: thin glue from arguments to a rendered image.
 
 mod args;
+mod bench;
 mod progress;
 mod run;
 

@@ -10,13 +10,32 @@ use lumis_render::load::photon::PhotonOverrides;
 use lumis_render::load::{load_path, load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
+
+/// Exit status of a render stopped by SIGINT/SIGTERM after writing its image (128 + SIGINT).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// Set by the first SIGINT/SIGTERM: no further passes start.
+static CANCEL: AtomicBool = AtomicBool::new(false);
+
+/// First Ctrl-C (or SIGTERM): finish the current pass, write the image, exit
+/// with [`EXIT_INTERRUPTED`]. Second: exit at once.
+fn install_interrupt_handler() {
+    let _ = ctrlc::set_handler(|| {
+        if CANCEL.swap(true, Ordering::SeqCst) {
+            eprintln!("\nlumis: interrupted twice: exiting without writing");
+            std::process::exit(EXIT_INTERRUPTED as i32);
+        }
+        eprintln!("\nlumis: interrupt: finishing this pass, then writing the image (Ctrl-C again to quit now)");
+    });
+}
 
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         None => render_cmd(RenderArgs::default()),
         Some(Command::Render(a)) => render_cmd(a),
+        Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
     }
 }
 
@@ -106,13 +125,13 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         clamp: a.clamp,
     };
     let reporter = Reporter::new(a.quiet);
-    let cancel = AtomicBool::new(false);
+    install_interrupt_handler();
     let out = render(
         &loaded.scene,
         &o.integrator,
         &settings,
         &|p| reporter.update(p),
-        &cancel,
+        &CANCEL,
     );
     reporter.finish();
     let mut data = out.film.mean_image();
@@ -160,6 +179,13 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             ps.radiance_time.as_secs_f64(),
             ps.memory_bytes as f64 / (1u64 << 20) as f64
         );
+    }
+    if out.interrupted {
+        eprintln!(
+            "lumis: interrupted: wrote the image so far ({} spp)",
+            out.spp
+        );
+        return Ok(ExitCode::from(EXIT_INTERRUPTED));
     }
     if out.bad_samples > 0 {
         let (x, y) = out.first_bad_pixel.unwrap_or((0, 0));

@@ -153,3 +153,39 @@ fn bad_arguments_are_refused() {
         assert!(!stderr(&o).contains("panicked"));
     }
 }
+
+#[test]
+fn interrupt_writes_the_image_so_far_with_its_sample_count() {
+    let d = temp_dir("sigint");
+    let child = Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args([
+            "render",
+            "--integrator",
+            "path",
+            "--resolution",
+            "16x16",
+            "--spp",
+            "1000000",
+            "-o",
+            "int.exr",
+            "-q",
+        ])
+        .current_dir(&d)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Let a few passes finish, then SIGINT.
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{e}");
+    let img = lumis_render::image_io::read_image(&d.join("int.exr")).unwrap();
+    let spp: u32 = img.meta("lumis:spp").unwrap().parse().unwrap();
+    assert!(spp > 0 && spp < 1_000_000, "spp {spp}");
+    assert!(img.data.iter().all(|v| v.is_finite()));
+}

@@ -6,6 +6,7 @@ use lumis_math::{Pcg32, Rgb, Vec2, Vec3};
 use lumis_render::integrator::photon::map::{irradiance_knn, PhotonMap};
 use lumis_render::integrator::photon::photon::Photon;
 use lumis_render::integrator::photon::radiance::RadiancePhotons;
+use std::f32::consts::FRAC_1_SQRT_2;
 
 fn u2(rng: &mut Pcg32) -> Vec2 {
     Vec2::new(rng.next_f32(), rng.next_f32())
@@ -28,7 +29,7 @@ fn photon_encoding_round_trips() {
     dirs.push(Vec3::new(1.0, 1.0, 1.0).normalize());
     dirs.push(Vec3::new(-1.0, 1.0, -1.0).normalize());
     dirs.push(Vec3::new(1e-4, -1e-4, -1.0).normalize());
-    dirs.push(Vec3::new(0.7071068, 0.0, -0.7071068));
+    dirs.push(Vec3::new(FRAC_1_SQRT_2, 0.0, -FRAC_1_SQRT_2));
     dirs.extend((0..100_000).map(|_| square_to_uniform_sphere(u2(&mut rng))));
     let mut worst_dir = 0.0f64;
     let mut worst_power = 0.0f64;
@@ -96,6 +97,14 @@ fn queries_match_brute_force() {
             let points = point_set(kind, n, &mut rng);
             let map = map_of(&points);
             assert_eq!(map.len(), n);
+            // Stored in the tree's order: check the map back, then use it.
+            let mut seen = vec![false; n];
+            for i in 0..n as u32 {
+                let o = map.original_index(i) as usize;
+                assert!(!seen[o] && points[o] == map.photon(i).pos());
+                seen[o] = true;
+            }
+            let points: Vec<Vec3> = map.photons().iter().map(Photon::pos).collect();
             for _ in 0..200 {
                 let q = if n > 0 && rng.next_f32() < 0.5 {
                     points[rng.next_below(n as u32) as usize]

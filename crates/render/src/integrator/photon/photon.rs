@@ -9,6 +9,9 @@
 //! The direction is octahedral, 16 bits per axis, rounded to nearest
 //! (error ~0.002 degrees).
 
+// `photon::photon` is the layout the integrator asked for.
+#![allow(clippy::module_inception)]
+
 use lumis_math::{Rgb, Vec3};
 
 #[derive(Clone, Copy, Debug)]

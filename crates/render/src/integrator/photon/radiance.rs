@@ -7,6 +7,9 @@ use super::map::{dist2, inclusive, irradiance_knn, KdTree, PhotonMap};
 use lumis_math::{Rgb, Vec3};
 use rayon::prelude::*;
 
+/// Points per kd-tree leaf at most: measured best for nearest-one lookups.
+const LEAF: usize = 16;
+
 /// Christensen's normal agreement threshold for a lookup.
 const NORMAL_DOT: f32 = 0.9;
 
@@ -21,7 +24,8 @@ pub struct RadiancePhotons {
 
 impl RadiancePhotons {
     /// Irradiance at every `stride`-th photon of `map` (`normals[i]` is the
-    /// surface normal where photon `i` was stored) from the `k` nearest
+    /// surface normal where photon `i` of the `Vec` given to
+    /// [`PhotonMap::build`] was stored) from the `k` nearest
     /// photons within `max_radius` arriving on the normal's side. Parallel and
     /// deterministic.
     pub fn build(
@@ -41,12 +45,12 @@ impl RadiancePhotons {
             .map_init(Vec::new, |scratch, j| {
                 let i = j * stride;
                 let p = map.photon(i as u32).pos();
-                let n = normals[i].normalize_or_zero();
+                let n = normals[map.original_index(i as u32) as usize].normalize_or_zero();
                 let (e, _) = irradiance_knn(map, p, n, k, max_radius, scratch);
                 (p, n, e)
             })
             .collect_into_vec(&mut estimates);
-        let mut tree = KdTree::build(estimates.iter().map(|e| e.0));
+        let mut tree = KdTree::build(estimates.iter().map(|e| e.0), LEAF);
         let order = tree.reindex_to_leaf_order();
         let normals = order.iter().map(|&i| estimates[i as usize].1).collect();
         let irradiance = order.iter().map(|&i| estimates[i as usize].2).collect();

@@ -1,0 +1,247 @@
+//! `lumis bench`: the figures the README quotes, measured on this machine.
+//! Medians of repeated runs; single-thread where a per-thread rate is quoted.
+
+use crate::args::BenchArgs;
+use anyhow::Result;
+use lumis_math::Vec3;
+use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays, MeshAccel};
+use lumis_render::integrator::photon::map::PhotonMap;
+use lumis_render::integrator::photon::PhotonMaps;
+use lumis_render::integrator::{render, RenderSettings};
+use lumis_render::load::{load_text, BuildOverrides, DEFAULT_SCENE};
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Runs `f` `reps` times, returns the median seconds.
+fn time_it(reps: usize, mut f: impl FnMut()) -> f64 {
+    median(
+        (0..reps)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+fn single_thread<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool")
+        .install(f)
+}
+
+/// Peak resident memory of this process (VmHWM), in MiB.
+pub fn peak_memory_mib() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb: f64 = s
+        .lines()
+        .find(|l| l.starts_with("VmHWM:"))?
+        .split_whitespace()
+        .nth(1)?
+        .parse()
+        .ok()?;
+    Some(kb / 1024.0)
+}
+
+pub fn run(a: BenchArgs) -> Result<()> {
+    let reps = if a.quick { 3 } else { 7 };
+    let tris = if a.quick { 100_000 } else { 1_000_000 };
+    let threads = rayon::current_num_threads();
+    println!(
+        "lumis bench ({} threads available; medians of {reps} runs)",
+        threads
+    );
+
+    // Ray tracing.
+    let mesh = bumpy_sphere(tris, 1);
+    let build = time_it(reps, || {
+        std::hint::black_box(MeshAccel::new(&mesh));
+    });
+    let accel = MeshAccel::new(&mesh);
+    let b = mesh_bounds(&mesh);
+    let n_rays = 100_000;
+    let (random, inward) = (random_rays(&b, n_rays, 7), inward_rays(&b, n_rays, 8));
+    let rate = |rays: &[lumis_render::geometry::Ray], any: bool| {
+        let s = single_thread(|| {
+            time_it(reps, || {
+                for r in rays {
+                    if any {
+                        std::hint::black_box(accel.any(r));
+                    } else {
+                        std::hint::black_box(accel.closest(r));
+                    }
+                }
+            })
+        });
+        rays.len() as f64 / s / 1e6
+    };
+    println!(
+        "| BVH build, {} triangles ({threads} threads) | {:.0} ms |",
+        mesh.triangle_count(),
+        build * 1e3
+    );
+    println!(
+        "| BVH memory | {:.1} MiB |",
+        accel.memory_bytes() as f64 / (1u64 << 20) as f64
+    );
+    println!(
+        "| closest hit, random rays, 1 thread | {:.2} Mrays/s |",
+        rate(&random, false)
+    );
+    println!(
+        "| closest hit, rays aimed inward, 1 thread | {:.2} Mrays/s |",
+        rate(&inward, false)
+    );
+    println!(
+        "| any hit, random rays, 1 thread | {:.2} Mrays/s |",
+        rate(&random, true)
+    );
+    drop(accel);
+
+    // Path tracing the default scene.
+    let res = if a.quick { 128 } else { 512 };
+    let ov = BuildOverrides {
+        resolution: Some((res, res)),
+        integrator: Some("path".into()),
+        ..Default::default()
+    };
+    let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
+        .map_err(|d| anyhow::anyhow!("{d}"))?;
+    let spp = 4;
+    let settings = RenderSettings {
+        spp,
+        seed: 0,
+        threads: 0,
+        time_limit: None,
+        sampler: l.options.sampler,
+        filter: l.options.filter.clone(),
+        crop: l.options.crop,
+        spp_per_pass: 1,
+        clamp: None,
+    };
+    let out = render(
+        &l.scene,
+        &l.options.integrator,
+        &settings,
+        &|_| {},
+        &AtomicBool::new(false),
+    );
+    let secs = out.elapsed.as_secs_f64();
+    println!(
+        "| path, default scene {res}x{res}, {spp} spp ({threads} threads) | {:.2} Msamples/s, {:.2} Mrays/s, {:.2} s |",
+        (res * res * spp) as f64 / secs / 1e6,
+        out.rays as f64 / secs / 1e6,
+        secs
+    );
+
+    // Photon mapping on the default scene.
+    let mut ov = BuildOverrides {
+        integrator: Some("photon".into()),
+        ..Default::default()
+    };
+    if a.quick {
+        ov.resolution = Some((128, 128));
+    }
+    let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
+        .map_err(|d| anyhow::anyhow!("{d}"))?;
+    let ps = &l.options.integrator.photon;
+    let maps = PhotonMaps::build(&l.scene, ps, 0);
+    let emitted = (ps.global_photons + ps.caustic_photons) as f64;
+    let st = &maps.stats;
+    println!(
+        "| photon tracing, default scene ({threads} threads) | {:.2} M photons emitted/s ({} global + {} caustic stored) |",
+        emitted / st.trace_time.as_secs_f64() / 1e6,
+        st.global_stored,
+        st.caustic_stored
+    );
+    println!(
+        "| photon map build (global + caustic) | {:.0} ms |",
+        st.build_time.as_secs_f64() * 1e3
+    );
+    println!(
+        "| radiance photons precompute | {:.0} ms |",
+        st.radiance_time.as_secs_f64() * 1e3
+    );
+    println!(
+        "| photon maps memory | {:.1} MiB |",
+        st.memory_bytes as f64 / (1u64 << 20) as f64
+    );
+
+    // k-NN queries among 1M photons (uniform in a unit cube), k = 50, 1 thread.
+    let n = if a.quick { 100_000 } else { 1_000_000 };
+    let mut rng = lumis_math::Pcg32::new(3, 3);
+    let photons: Vec<_> = (0..n)
+        .map(|_| {
+            let p = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+            lumis_render::integrator::photon::photon::Photon::new(
+                p,
+                lumis_math::Rgb::splat(1e-6),
+                Vec3::Z,
+                1.0,
+            )
+        })
+        .collect();
+    let map_build = time_it(reps, || {
+        std::hint::black_box(PhotonMap::build(photons.clone(), n as u64));
+    });
+    let map = PhotonMap::build(photons, n as u64);
+    let queries: Vec<Vec3> = (0..20_000)
+        .map(|_| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()))
+        .collect();
+    let knn = single_thread(|| {
+        let mut out = Vec::new();
+        time_it(reps, || {
+            for q in &queries {
+                std::hint::black_box(map.knn(*q, 50, 1.0, &mut out));
+            }
+        })
+    });
+    println!(
+        "| photon map build, {n} photons | {:.0} ms |",
+        map_build * 1e3
+    );
+    println!(
+        "| k-NN query, k = 50 among {n} photons, 1 thread | {:.2} µs/query ({:.0} k queries/s) |",
+        knn / queries.len() as f64 * 1e6,
+        queries.len() as f64 / knn / 1e3
+    );
+    drop(map);
+
+    let settings = RenderSettings {
+        spp: l.options.spp,
+        seed: 0,
+        threads: 0,
+        time_limit: None,
+        sampler: l.options.sampler,
+        filter: l.options.filter.clone(),
+        crop: l.options.crop,
+        spp_per_pass: 1,
+        clamp: None,
+    };
+    let out = render(
+        &l.scene,
+        &l.options.integrator,
+        &settings,
+        &|_| {},
+        &AtomicBool::new(false),
+    );
+    let (w, h) = (out.film.width(), out.film.height());
+    println!(
+        "| photon, default scene as shipped: {w}x{h}, {} spp ({threads} threads) | {:.1} s (incl. photon pass) |",
+        out.spp,
+        out.elapsed.as_secs_f64()
+    );
+    if let Some(m) = peak_memory_mib() {
+        println!("| peak memory of this run (VmHWM) | {m:.0} MiB |");
+    }
+    Ok(())
+}
