@@ -20,6 +20,19 @@ pub enum Command {
     Render(RenderArgs),
     /// Measure BVH, path-tracing and photon-mapping speed on this machine.
     Bench(BenchArgs),
+    /// Compare an image with a reference: MSE, RMSE, relMSE, MAE, channel means.
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct CompareArgs {
+    /// Test image (.exr, .pfm or .png).
+    pub test: PathBuf,
+    /// Reference image, same size.
+    pub reference: PathBuf,
+    /// Restrict to a region, as fractions x0,x1,y0,y1 (like --crop).
+    #[arg(long, value_name = "x0,x1,y0,y1", value_parser = parse_crop)]
+    pub mask: Option<[f32; 4]>,
 }
 
 #[derive(Args, Debug, Default, Clone)]

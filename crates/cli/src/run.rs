@@ -36,7 +36,37 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         None => render_cmd(RenderArgs::default()),
         Some(Command::Render(a)) => render_cmd(a),
         Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
+        Some(Command::Compare(a)) => compare_cmd(a),
     }
+}
+
+fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
+    use lumis_render::image_io::read_image;
+    use lumis_render::metrics::{compare, Region};
+    let t = read_image(&a.test)?;
+    let r = read_image(&a.reference)?;
+    let region = a.mask.map(|m| {
+        let b = lumis_render::load::options::crop_bounds((t.width, t.height), m);
+        Region {
+            x0: b.x0,
+            x1: b.x1,
+            y0: b.y0,
+            y1: b.y1,
+        }
+    });
+    let m = compare(&t, &r, region).map_err(|e| anyhow::anyhow!("{}: {e}", a.test.display()))?;
+    println!("pixels   {}", m.pixels);
+    println!("MSE      {:.6e}", m.mse);
+    println!("RMSE     {:.6e}", m.rmse);
+    println!("relMSE   {:.6e}", m.rel_mse);
+    println!("MAE      {:.6e}", m.mae);
+    println!(
+        "mean     test {:.6} {:.6} {:.6}  reference {:.6} {:.6} {:.6}",
+        m.mean_test[0], m.mean_test[1], m.mean_test[2], m.mean_ref[0], m.mean_ref[1], m.mean_ref[2]
+    );
+    let q = m.ratio();
+    println!("ratio    {:.4} {:.4} {:.4}", q[0], q[1], q[2]);
+    Ok(ExitCode::SUCCESS)
 }
 
 fn overrides(a: &RenderArgs) -> Result<BuildOverrides> {

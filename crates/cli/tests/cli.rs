@@ -189,3 +189,38 @@ fn interrupt_writes_the_image_so_far_with_its_sample_count() {
     assert!(spp > 0 && spp < 1_000_000, "spp {spp}");
     assert!(img.data.iter().all(|v| v.is_finite()));
 }
+
+#[test]
+fn compare_prints_metrics_and_refuses_mismatched_sizes() {
+    use lumis_render::image_io::{write_image, RgbImage};
+    let d = temp_dir("compare");
+    write_image(
+        &d.join("r.pfm"),
+        &RgbImage::new(2, 1, vec![1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+        0.0,
+    )
+    .unwrap();
+    write_image(
+        &d.join("t.pfm"),
+        &RgbImage::new(2, 1, vec![2.0, 1.0, 1.0, 0.0, 0.0, 0.5]),
+        0.0,
+    )
+    .unwrap();
+    write_image(&d.join("big.pfm"), &RgbImage::new(3, 1, vec![0.0; 9]), 0.0).unwrap();
+    let o = lumis(&d, &["compare", "t.pfm", "r.pfm"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    let rmse: f64 = text
+        .lines()
+        .find(|l| l.starts_with("RMSE"))
+        .unwrap()
+        .split_whitespace()
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((rmse - (1.25f64 / 6.0).sqrt()).abs() < 1e-6, "{text}");
+    let o = lumis(&d, &["compare", "t.pfm", "big.pfm"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("sizes differ"));
+}

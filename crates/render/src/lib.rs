@@ -11,4 +11,5 @@ pub mod integrator;
 pub mod light;
 pub mod load;
 pub mod material;
+pub mod metrics;
 pub mod scene;
