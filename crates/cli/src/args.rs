@@ -17,7 +17,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render a pbrt-v4 scene (the built-in default scene if none is given).
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Measure BVH, path-tracing and photon-mapping speed on this machine.
     Bench(BenchArgs),
     /// Compare an image with a reference: MSE, RMSE, relMSE, MAE, channel means.

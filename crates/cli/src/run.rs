@@ -34,7 +34,7 @@ fn install_interrupt_handler() {
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         None => render_cmd(RenderArgs::default()),
-        Some(Command::Render(a)) => render_cmd(a),
+        Some(Command::Render(a)) => render_cmd(*a),
         Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
         Some(Command::Compare(a)) => compare_cmd(a),
     }
