@@ -47,6 +47,9 @@ pub struct PrimInfo {
 
 pub const NO_LIGHT: u32 = u32::MAX;
 
+/// Tag in `Scene::tri_verts` of a primitive that is not a triangle.
+const ANALYTIC: u32 = 1;
+
 /// A surface hit with everything shading needs.
 #[derive(Clone, Copy, Debug)]
 pub struct Hit {
@@ -66,8 +69,10 @@ pub struct Scene {
     pub shapes: Shapes,
     /// Primitives in BVH leaf order.
     pub prims: Vec<PrimInfo>,
-    /// Vertices of triangle primitives in BVH leaf order (unused slots for analytic shapes).
-    tri_verts: Vec<[Vec3; 3]>,
+    /// Per primitive in BVH leaf order: the triangle's vertices, or `ANALYTIC`
+    /// for a sphere or disk (then `prims` says which), so testing a triangle
+    /// reads one array only.
+    tri_verts: Vec<([Vec3; 3], u32)>,
     bvh: Bvh,
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
@@ -92,13 +97,11 @@ impl Scene {
         let bvh = Bvh::build(&boxes);
         let old_prims = prims;
         let prims: Vec<PrimInfo> = bvh.order.iter().map(|&i| old_prims[i as usize]).collect();
-        let tri_verts = prims
-            .iter()
-            .map(|p| match p.prim {
-                Prim::Triangle { mesh, tri } => shapes.meshes[mesh as usize].vertices(tri),
-                _ => [Vec3::ZERO; 3],
-            })
-            .collect();
+        let mut tri_verts = crate::accel::mem::huge_vec(prims.len());
+        tri_verts.extend(prims.iter().map(|p| match p.prim {
+            Prim::Triangle { mesh, tri } => (shapes.meshes[mesh as usize].vertices(tri), 0),
+            _ => ([Vec3::ZERO; 3], ANALYTIC),
+        }));
         let bounds = bvh.bounds();
         for l in lights.iter_mut() {
             l.preprocess(&bounds);
@@ -129,26 +132,39 @@ impl Scene {
 
     pub fn bvh_memory_bytes(&self) -> usize {
         self.bvh.memory_bytes()
-            + self.tri_verts.len() * 36
+            + self.tri_verts.len() * std::mem::size_of::<([Vec3; 3], u32)>()
             + self.prims.len() * std::mem::size_of::<PrimInfo>()
+    }
+
+    /// Starts loading the triangle data of slots `start..start + count`.
+    #[inline(always)]
+    fn prefetch(&self, start: u32, count: u32) {
+        if let Some(t) = self.tri_verts.get(start as usize..(start + count) as usize) {
+            crate::accel::mem::prefetch(t);
+        }
     }
 
     /// Closest intersection along the ray, or `None`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         let sh = RayShear::new(ray.d);
         let mut uv = Vec2::ZERO;
-        let (t, slot) =
-            self.bvh
-                .closest(ray, |slot, r, tmax| match self.prims[slot as usize].prim {
-                    Prim::Triangle { .. } => {
-                        let (t, b1, b2) =
-                            intersect_triangle(r, &sh, &self.tri_verts[slot as usize], tmax)?;
-                        uv = Vec2::new(b1, b2);
-                        Some(t)
-                    }
+        let (t, slot) = self.bvh.closest_hinted(
+            ray,
+            |slot, r, tmax| {
+                let (v, kind) = &self.tri_verts[slot as usize];
+                if *kind != ANALYTIC {
+                    let (t, b1, b2) = intersect_triangle(r, &sh, v, tmax)?;
+                    uv = Vec2::new(b1, b2);
+                    return Some(t);
+                }
+                match self.prims[slot as usize].prim {
                     Prim::Sphere(i) => self.shapes.spheres[i as usize].intersect(r, tmax),
                     Prim::Disk(i) => self.shapes.disks[i as usize].intersect(r, tmax),
-                })?;
+                    Prim::Triangle { .. } => None,
+                }
+            },
+            |start, count| self.prefetch(start, count),
+        )?;
         let info = self.prims[slot as usize];
         let geom = match info.prim {
             Prim::Triangle { mesh, tri } => {
@@ -173,14 +189,21 @@ impl Scene {
     /// Whether anything blocks the ray before `ray.tmax`.
     pub fn occluded(&self, ray: &Ray) -> bool {
         let sh = RayShear::new(ray.d);
-        self.bvh
-            .any(ray, |slot, r, tmax| match self.prims[slot as usize].prim {
-                Prim::Triangle { .. } => {
-                    intersect_triangle(r, &sh, &self.tri_verts[slot as usize], tmax).is_some()
+        self.bvh.any_hinted(
+            ray,
+            |slot, r, tmax| {
+                let (v, kind) = &self.tri_verts[slot as usize];
+                if *kind != ANALYTIC {
+                    return intersect_triangle(r, &sh, v, tmax).is_some();
                 }
-                Prim::Sphere(i) => self.shapes.spheres[i as usize].intersect(r, tmax).is_some(),
-                Prim::Disk(i) => self.shapes.disks[i as usize].intersect(r, tmax).is_some(),
-            })
+                match self.prims[slot as usize].prim {
+                    Prim::Sphere(i) => self.shapes.spheres[i as usize].intersect(r, tmax).is_some(),
+                    Prim::Disk(i) => self.shapes.disks[i as usize].intersect(r, tmax).is_some(),
+                    Prim::Triangle { .. } => false,
+                }
+            },
+            |start, count| self.prefetch(start, count),
+        )
     }
 
     #[inline]

@@ -127,7 +127,8 @@ impl MeshAccel {
             .map(|t| mesh.bounds(t))
             .collect();
         let bvh = Bvh::build(&boxes);
-        let tris = bvh.order.iter().map(|&t| (mesh.vertices(t), t)).collect();
+        let mut tris = super::mem::huge_vec(bvh.order.len());
+        tris.extend(bvh.order.iter().map(|&t| (mesh.vertices(t), t)));
         MeshAccel { bvh, tris }
     }
 
@@ -136,9 +137,13 @@ impl MeshAccel {
     pub fn closest(&self, ray: &Ray) -> Option<(f32, u32)> {
         let sh = RayShear::new(ray.d);
         self.bvh
-            .closest(ray, |slot, r, tmax| {
-                intersect_triangle(r, &sh, &self.tris[slot as usize].0, tmax).map(|h| h.0)
-            })
+            .closest_hinted(
+                ray,
+                |slot, r, tmax| {
+                    intersect_triangle(r, &sh, &self.tris[slot as usize].0, tmax).map(|h| h.0)
+                },
+                |start, count| self.prefetch(start, count),
+            )
             .map(|(t, slot)| (t, self.tris[slot as usize].1))
     }
 
@@ -146,9 +151,18 @@ impl MeshAccel {
     #[inline]
     pub fn any(&self, ray: &Ray) -> bool {
         let sh = RayShear::new(ray.d);
-        self.bvh.any(ray, |slot, r, tmax| {
-            intersect_triangle(r, &sh, &self.tris[slot as usize].0, tmax).is_some()
-        })
+        self.bvh.any_hinted(
+            ray,
+            |slot, r, tmax| intersect_triangle(r, &sh, &self.tris[slot as usize].0, tmax).is_some(),
+            |start, count| self.prefetch(start, count),
+        )
+    }
+
+    #[inline(always)]
+    fn prefetch(&self, start: u32, count: u32) {
+        if let Some(t) = self.tris.get(start as usize..(start + count) as usize) {
+            super::mem::prefetch(t);
+        }
     }
 
     pub fn memory_bytes(&self) -> usize {

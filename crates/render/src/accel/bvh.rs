@@ -1,10 +1,11 @@
 //! Bounding volume hierarchy: binned SAH build (parallel for large nodes),
-//! depth-first flattened nodes, closest-hit and any-hit traversal.
+//! depth-first flattened 8-wide nodes, closest-hit and any-hit traversal.
 //!
 //! The BVH knows only boxes; primitives are tested through a callback that
 //! receives the leaf slot (an index into `order`), so the caller can keep
 //! primitive data in BVH order for locality.
 
+use super::mem::{huge_vec, prefetch};
 use crate::geometry::{Aabb, Ray};
 use lumis_math::Vec3;
 use lumis_math::Vec4;
@@ -19,35 +20,43 @@ const MEDIAN_DEPTH: u32 = 31;
 /// such a hit must not be lost when it is just closer than the current `tmax`.
 const CULL_SLACK: f32 = 1.0 + 32.0 * f32::EPSILON;
 
-/// A 4-wide node (128 bytes, two cache lines): the boxes of up to four
-/// children in SoA form, so one SIMD slab test handles all of them.
+/// Children per node.
+const WIDTH: usize = 8;
+
+/// An 8-wide node (256 bytes, four cache lines): the boxes of up to eight
+/// children in SoA form, two groups of four, so two SIMD slab tests handle
+/// all of them. Traversal is bound by the latency of dependent node loads;
+/// eight children per node make the tree a third shallower than four, and
+/// the four lines of a node load in parallel.
 /// Child `i` is a leaf of `count[i] > 0` primitives from slot `child[i]`, an
 /// interior node at index `child[i]` (`count[i] == 0`), or unused (empty box).
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub struct Node {
-    /// min x, min y, min z, max x, max y, max z of the four children.
-    planes: [Vec4; 6],
-    child: [u32; 4],
-    count: [u32; 4],
+    /// Per group of four children: min x, min y, min z, max x, max y, max z.
+    planes: [[Vec4; 6]; 2],
+    child: [u32; WIDTH],
+    count: [u32; WIDTH],
 }
 
+const EMPTY_GROUP: [Vec4; 6] = [
+    Vec4::INFINITY,
+    Vec4::INFINITY,
+    Vec4::INFINITY,
+    Vec4::NEG_INFINITY,
+    Vec4::NEG_INFINITY,
+    Vec4::NEG_INFINITY,
+];
+
 const EMPTY_NODE: Node = Node {
-    planes: [
-        Vec4::INFINITY,
-        Vec4::INFINITY,
-        Vec4::INFINITY,
-        Vec4::NEG_INFINITY,
-        Vec4::NEG_INFINITY,
-        Vec4::NEG_INFINITY,
-    ],
-    child: [0; 4],
-    count: [0; 4],
+    planes: [EMPTY_GROUP; 2],
+    child: [0; WIDTH],
+    count: [0; WIDTH],
 };
 
-/// Traversal stack size. Each 4-wide level pushes at most 3 entries and the
-/// build bounds the binary depth by `MEDIAN_DEPTH + 32`, so this never overflows.
-const STACK: usize = 3 * (MEDIAN_DEPTH as usize + 34);
+/// Traversal stack size. Each node level pushes at most `WIDTH - 1` entries
+/// and the build bounds the binary depth by `MEDIAN_DEPTH + 32`, so this never overflows.
+const STACK: usize = (WIDTH - 1) * (MEDIAN_DEPTH as usize + 34);
 
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -122,7 +131,19 @@ impl RayBoxes {
         }
     }
 
-    /// Entry distances of the four children and the mask of those hit before `tmax`.
+    /// Entry distances of the eight children and the mask of those hit before `tmax`.
+    #[inline(always)]
+    fn test(&self, n: &Node, tmax: f32) -> ([f32; WIDTH], u32) {
+        let (t0, m0) = self.test4(&n.planes[0], tmax);
+        let (t1, m1) = self.test4(&n.planes[1], tmax);
+        let (a, b) = (t0.to_array(), t1.to_array());
+        (
+            [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]],
+            m0 | (m1 << 4),
+        )
+    }
+
+    /// Entry distances of four children and the mask of those hit before `tmax`.
     ///
     /// With a zero direction component and the origin exactly on a slab plane,
     /// `0 * inf` gives NaN; glam's `min`/`max` (SSE `minps`/`maxps` and the
@@ -130,8 +151,7 @@ impl RayBoxes {
     /// folding each axis in as the *first* operand drops the NaN, treating
     /// the ray as inside that (closed) slab.
     #[inline(always)]
-    fn test(&self, n: &Node, tmax: f32) -> (Vec4, u32) {
-        let p = &n.planes;
+    fn test4(&self, p: &[Vec4; 6], tmax: f32) -> (Vec4, u32) {
         let tn0 = (p[self.near[0]] - self.o[0]) * self.inv_d[0];
         let tn1 = (p[self.near[1]] - self.o[1]) * self.inv_d[1];
         let tn2 = (p[self.near[2]] - self.o[2]) * self.inv_d[2];
@@ -172,8 +192,11 @@ impl Bvh {
         let root = build_rec(&mut refs, 0, 0);
         let mut nodes = Vec::with_capacity(refs.len() / 4 + 1);
         flatten(&[&root], &mut nodes);
+        // Copy into a huge-page backed array of the exact size.
+        let mut packed = huge_vec(nodes.len());
+        packed.extend_from_slice(&nodes);
         Bvh {
-            nodes,
+            nodes: packed,
             order: refs.iter().map(|r| r.index).collect(),
             bounds: *root.bounds(),
         }
@@ -191,13 +214,37 @@ impl Bvh {
         self.nodes.len() * std::mem::size_of::<Node>() + self.order.len() * 4
     }
 
+    /// Starts loading child `i` of `node`: its node, or (through `hint`) its primitives.
+    #[inline(always)]
+    fn prefetch_child(&self, node: &Node, i: usize, hint: &impl Fn(u32, u32)) {
+        let (child, count) = (node.child[i], node.count[i]);
+        if count > 0 {
+            hint(child, count);
+        } else if let Some(n) = self.nodes.get(child as usize) {
+            prefetch(std::slice::from_ref(n));
+        }
+    }
+
     /// Closest hit: `test(slot, ray, tmax)` returns the hit distance if the
     /// primitive is hit closer than `tmax`. Returns `(t, slot)`.
     #[inline]
     pub fn closest(
         &self,
         ray: &Ray,
+        test: impl FnMut(u32, &Ray, f32) -> Option<f32>,
+    ) -> Option<(f32, u32)> {
+        self.closest_hinted(ray, test, |_, _| {})
+    }
+
+    /// [`Bvh::closest`] that also calls `hint(start, count)` for each leaf as
+    /// soon as its box is hit (before the leaf is tested, if ever), so the
+    /// caller can prefetch the primitives of slots `start..start + count`.
+    #[inline]
+    pub fn closest_hinted(
+        &self,
+        ray: &Ray,
         mut test: impl FnMut(u32, &Ray, f32) -> Option<f32>,
+        hint: impl Fn(u32, u32),
     ) -> Option<(f32, u32)> {
         if self.nodes.is_empty() {
             return None;
@@ -226,12 +273,13 @@ impl Bvh {
                 let node = &self.nodes[cur.child as usize];
                 let (tnear, mut mask) = rb.test(node, tcull);
                 if mask != 0 {
-                    let tn = tnear.to_array();
+                    let tn = tnear;
                     // Push the hit children far to near; continue with the nearest.
                     let base = sp;
                     while mask != 0 {
                         let i = mask.trailing_zeros() as usize;
                         mask &= mask - 1;
+                        self.prefetch_child(node, i, &hint);
                         let e = Entry {
                             child: node.child[i],
                             count: node.count[i],
@@ -266,7 +314,18 @@ impl Bvh {
 
     /// Any hit closer than `ray.tmax`: `test(slot, ray, tmax)` says whether the primitive blocks.
     #[inline]
-    pub fn any(&self, ray: &Ray, mut test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
+    pub fn any(&self, ray: &Ray, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
+        self.any_hinted(ray, test, |_, _| {})
+    }
+
+    /// [`Bvh::any`] with a leaf hint as in [`Bvh::closest_hinted`].
+    #[inline]
+    pub fn any_hinted(
+        &self,
+        ray: &Ray,
+        mut test: impl FnMut(u32, &Ray, f32) -> bool,
+        hint: impl Fn(u32, u32),
+    ) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -288,6 +347,7 @@ impl Bvh {
                 while mask != 0 {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
+                    self.prefetch_child(node, i, &hint);
                     stack[sp] = (node.child[i], node.count[i]);
                     sp += 1;
                 }
@@ -301,11 +361,11 @@ impl Bvh {
     }
 }
 
-/// Writes a 4-wide node holding `kids` (1 or 2 build nodes) after collapsing
+/// Writes a wide node holding `kids` (1 or 2 build nodes) after collapsing
 /// the largest interior grandchildren into it; returns its index.
 fn flatten(kids: &[&BuildNode], out: &mut Vec<Node>) -> u32 {
     let mut lanes: Vec<&BuildNode> = kids.to_vec();
-    while lanes.len() < 4 {
+    while lanes.len() < WIDTH {
         // Open the interior child with the largest surface area.
         let pick = lanes
             .iter()
@@ -335,9 +395,10 @@ fn flatten(kids: &[&BuildNode], out: &mut Vec<Node>) -> u32 {
             }
         };
         let n = &mut out[idx];
+        let (g, l) = (i / 4, i % 4);
         for a in 0..3 {
-            n.planes[a][i] = b.min[a];
-            n.planes[a + 3][i] = b.max[a];
+            n.planes[g][a][l] = b.min[a];
+            n.planes[g][a + 3][l] = b.max[a];
         }
         n.child[i] = child;
         n.count[i] = count;
@@ -509,8 +570,8 @@ mod tests {
     }
 
     #[test]
-    fn node_is_128_bytes() {
-        assert_eq!(std::mem::size_of::<Node>(), 128);
+    fn node_is_256_bytes() {
+        assert_eq!(std::mem::size_of::<Node>(), 256);
     }
 
     #[test]

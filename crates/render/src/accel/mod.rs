@@ -2,4 +2,5 @@
 
 pub mod bench;
 pub mod bvh;
+pub mod mem;
 pub use bvh::Bvh;
