@@ -228,7 +228,20 @@ fn compare_prints_metrics_and_refuses_mismatched_sizes() {
 #[test]
 fn photon_budget_beyond_memory_is_refused_naming_the_parameter() {
     let d = temp_dir("photonmem");
-    let o = lumis(&d, &["render", "--integrator", "photon", "--caustic-photons", "100000000000", "--spp", "1", "-o", "m.exr"]);
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--integrator",
+            "photon",
+            "--caustic-photons",
+            "100000000000",
+            "--spp",
+            "1",
+            "-o",
+            "m.exr",
+        ],
+    );
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(e.contains("caustic-photons") && e.contains("GiB"), "{e}");

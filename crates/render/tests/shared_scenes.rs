@@ -19,13 +19,25 @@ const SCENES: &[&str] = &[
 #[test]
 fn shared_scenes_load_and_render_tiny() {
     for rel in SCENES {
-        let Some(path) = shared_scene(rel) else { return };
-        let ov = BuildOverrides { resolution: Some((16, 12)), spp: Some(1), integrator: Some("path".into()), max_depth: Some(3), ..Default::default() };
+        let Some(path) = shared_scene(rel) else {
+            return;
+        };
+        let ov = BuildOverrides {
+            resolution: Some((16, 12)),
+            spp: Some(1),
+            integrator: Some("path".into()),
+            max_depth: Some(3),
+            ..Default::default()
+        };
         let l = load_path(&path, &ov).unwrap_or_else(|e| panic!("{rel}: {e}"));
         let out = render_loaded(&l, 1, 0, 0);
         assert_eq!(out.bad_samples, 0, "{rel}: NaN/inf samples");
         let (mean, _) = mean_and_se(&out.film, None);
-        eprintln!("{rel}: {} warnings, {} lights, mean {mean:.4}", l.warnings.len(), l.scene.lights.len());
+        eprintln!(
+            "{rel}: {} warnings, {} lights, mean {mean:.4}",
+            l.warnings.len(),
+            l.scene.lights.len()
+        );
         assert!(mean.is_finite());
         assert!(!l.scene.lights.is_empty(), "{rel}: no lights built");
     }
