@@ -71,7 +71,10 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let shadow: Vec<_> = random
         .iter()
         .enumerate()
-        .map(|(i, r)| lumis_render::geometry::Ray { tmax: 0.05 + 2.0 * (i % 97) as f32 / 97.0, ..*r })
+        .map(|(i, r)| lumis_render::geometry::Ray {
+            tmax: 0.05 + 2.0 * (i % 97) as f32 / 97.0,
+            ..*r
+        })
         .collect();
     let rate = |rays: &[lumis_render::geometry::Ray], any: bool| {
         let s = single_thread(|| {
@@ -87,14 +90,25 @@ pub fn run(a: BenchArgs) -> Result<()> {
         });
         rays.len() as f64 / s / 1e6
     };
-    let (r_random, r_inward, r_any) = (rate(&random, false), rate(&inward, false), rate(&shadow, true));
+    let (r_random, r_inward, r_any) = (
+        rate(&random, false),
+        rate(&inward, false),
+        rate(&shadow, true),
+    );
     let memory = accel.memory_bytes();
     drop(accel);
     let build = time_it(reps, || {
         std::hint::black_box(MeshAccel::new(&mesh));
     });
-    println!("| BVH build, {} triangles ({threads} threads) | {:.0} ms |", mesh.triangle_count(), build * 1e3);
-    println!("| BVH memory (nodes + leaf-ordered triangles) | {:.1} MiB |", memory as f64 / (1u64 << 20) as f64);
+    println!(
+        "| BVH build, {} triangles ({threads} threads) | {:.0} ms |",
+        mesh.triangle_count(),
+        build * 1e3
+    );
+    println!(
+        "| BVH memory (nodes + leaf-ordered triangles) | {:.1} MiB |",
+        memory as f64 / (1u64 << 20) as f64
+    );
     println!("| closest hit, random rays, 1 thread | {r_random:.2} Mrays/s |");
     println!("| closest hit, rays aimed inward, 1 thread | {r_inward:.2} Mrays/s |");
     println!("| any hit, random shadow rays, 1 thread | {r_any:.2} Mrays/s |");
@@ -109,17 +123,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
         .map_err(|d| anyhow::anyhow!("{d}"))?;
     let spp = 4;
-    let settings = RenderSettings {
-        spp,
-        seed: 0,
-        threads: 0,
-        time_limit: None,
-        sampler: l.options.sampler,
-        filter: l.options.filter.clone(),
-        crop: l.options.crop,
-        spp_per_pass: 1,
-        clamp: None,
-    };
+    let settings = RenderSettings::from_options(&l.options, spp, 0, 0);
     let out = render(
         &l.scene,
         &l.options.integrator,
@@ -208,17 +212,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     );
     drop(map);
 
-    let settings = RenderSettings {
-        spp: l.options.spp,
-        seed: 0,
-        threads: 0,
-        time_limit: None,
-        sampler: l.options.sampler,
-        filter: l.options.filter.clone(),
-        crop: l.options.crop,
-        spp_per_pass: 1,
-        clamp: None,
-    };
+    let settings = RenderSettings::from_options(&l.options, l.options.spp, 0, 0);
     let out = render(
         &l.scene,
         &l.options.integrator,

@@ -139,20 +139,16 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     }
     let o = &loaded.options;
     let files = outputs(&a, o.filename.as_deref())?;
+    // With only a time budget, the sample count is unbounded.
+    let spp = if a.time.is_some() && a.spp.is_none() {
+        0
+    } else {
+        o.spp
+    };
     let settings = RenderSettings {
-        spp: if a.time.is_some() && a.spp.is_none() {
-            0
-        } else {
-            o.spp
-        },
-        seed: a.seed,
-        threads: a.threads.unwrap_or(0),
         time_limit: a.time.map(Duration::from_secs_f64),
-        sampler: o.sampler,
-        filter: o.filter.clone(),
-        crop: o.crop,
-        spp_per_pass: 1,
         clamp: a.clamp,
+        ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
     };
     let reporter = Reporter::new(a.quiet);
     install_interrupt_handler();

@@ -34,6 +34,29 @@ pub struct RenderSettings {
     pub clamp: Option<f32>,
 }
 
+impl RenderSettings {
+    /// Settings from a scene's options: `spp` samples per pixel (0 with a time
+    /// limit: unbounded), one sample per pass, no clamp.
+    pub fn from_options(
+        o: &crate::load::RenderOptions,
+        spp: u32,
+        seed: u64,
+        threads: usize,
+    ) -> RenderSettings {
+        RenderSettings {
+            spp,
+            seed,
+            threads,
+            time_limit: None,
+            sampler: o.sampler,
+            filter: o.filter.clone(),
+            crop: o.crop,
+            spp_per_pass: 1,
+            clamp: None,
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug)]
 pub struct Progress {
     pub spp_done: u32,

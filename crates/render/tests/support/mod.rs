@@ -14,17 +14,7 @@ pub fn load(text: &str, ov: &BuildOverrides) -> LoadedScene {
 }
 
 pub fn settings(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderSettings {
-    RenderSettings {
-        spp,
-        seed,
-        threads,
-        time_limit: None,
-        sampler: l.options.sampler,
-        filter: l.options.filter.clone(),
-        crop: l.options.crop,
-        spp_per_pass: 1,
-        clamp: None,
-    }
+    RenderSettings::from_options(&l.options, spp, seed, threads)
 }
 
 pub fn render_loaded(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderOutcome {

@@ -54,11 +54,7 @@ pub fn li(ctx: &PhotonCtx, mut ray: Ray, sampler: &mut Sampler, rays: &mut u64) 
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
-        let alpha = if ctx.s.alpha_auto {
-            ctx.alpha_first
-        } else {
-            1.0
-        };
+        let alpha = alpha_at(ctx.s, ctx.alpha_first, true);
         return l + beta
             * shade(
                 ctx,
@@ -73,6 +69,16 @@ pub fn li(ctx: &PhotonCtx, mut ray: Ray, sampler: &mut Sampler, rays: &mut u64) 
             );
     }
     l
+}
+
+/// `alpha` of `q_1` at a shading point (seed, A.10): the samples per pixel at
+/// the camera path's first non-delta hit (with `alpha = auto`), 1 elsewhere.
+pub fn alpha_at(s: &PhotonSettings, alpha_first: f32, first_camera_hit: bool) -> f32 {
+    if first_camera_hit && s.alpha_auto {
+        alpha_first
+    } else {
+        1.0
+    }
 }
 
 /// Light leaving non-delta point `x` towards `wo`, excluding its emission.
@@ -208,7 +214,8 @@ fn trace_gather(
             continue;
         }
         if bsdf.is_glossy() && d < s.max_depth {
-            return t * (emitted + shade(ctx, &h, &bsdf, wo, 1.0, 1, d, sampler, rays));
+            let alpha = alpha_at(s, ctx.alpha_first, false);
+            return t * (emitted + shade(ctx, &h, &bsdf, wo, alpha, 1, d, sampler, rays));
         }
         return t * (emitted + global_radiance(ctx, &h, &bsdf, wo));
     }
@@ -315,4 +322,30 @@ fn boundary_photon(found: &[(u32, f32)], k: usize, r2: f32) -> Option<usize> {
         return None;
     }
     found.iter().position(|&(_, d2)| d2 == r2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn alpha_applies_only_at_the_first_camera_hit() {
+        let auto = PhotonSettings::default();
+        assert!(auto.alpha_auto);
+        assert_eq!(alpha_at(&auto, 64.0, true), 64.0);
+        assert_eq!(alpha_at(&auto, 64.0, false), 1.0);
+        let one = PhotonSettings {
+            alpha_auto: false,
+            ..PhotonSettings::default()
+        };
+        assert_eq!(alpha_at(&one, 64.0, true), 1.0);
+        assert_eq!(alpha_at(&one, 64.0, false), 1.0);
+    }
+
+    #[test]
+    fn boundary_photon_is_left_out_only_when_k_were_found() {
+        let found = [(0u32, 0.1f32), (1, 0.4), (2, 0.2)];
+        assert_eq!(boundary_photon(&found, 3, 0.4), Some(1));
+        assert_eq!(boundary_photon(&found, 4, 0.4), None);
+    }
 }
