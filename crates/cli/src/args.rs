@@ -107,6 +107,9 @@ pub struct RenderArgs {
     /// photon: largest photon search radius in scene units (0: 2% of the scene radius).
     #[arg(long, value_name = "R")]
     pub max_radius: Option<f32>,
+    /// photon: emit caustic photons only towards perfectly specular shapes.
+    #[arg(long)]
+    pub aim_caustics: bool,
     /// photon: caustic density-estimation kernel.
     #[arg(long, value_name = "none|cone")]
     pub kernel: Option<String>,

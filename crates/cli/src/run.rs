@@ -94,6 +94,7 @@ fn overrides(a: &RenderArgs) -> Result<BuildOverrides> {
             max_radius: a.max_radius,
             kernel: a.kernel.clone(),
             radiance_photons: None,
+            aim_caustics: a.aim_caustics.then_some(true),
         },
     })
 }

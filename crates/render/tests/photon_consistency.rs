@@ -162,3 +162,37 @@ fn diffuse_floor_caustic_matches_path() {
 fn glossy_floor_caustic_matches_path() {
     check_scene("caustic_sphere_glossy", 64);
 }
+
+/// Aimed caustic photons (`aimcaustics`): the same caustic with several times
+/// more photons stored from the same emitted count; photon fluxes then vary
+/// and q_1 uses each photon's own.
+#[test]
+fn aimed_caustic_photons_match_path() {
+    let name = "caustic_sphere";
+    let (r, r_se) = reference(name);
+    let mut stored = Vec::new();
+    for aim in [false, true] {
+        for mode in ["photons", "mis"] {
+            let mut o = ov("photon");
+            o.photon.caustics = Some(mode.into());
+            o.photon.caustic_photons = Some(1_000_000);
+            o.photon.aim_caustics = Some(aim);
+            let l = load_path(&scene_path(name), &o).unwrap();
+            let out = render_loaded(&l, 64, 7, 0);
+            let (m, se) = region(&out.film);
+            let err = (m - r) / r;
+            let noise = (se * se + r_se * r_se).sqrt() / r;
+            eprintln!("aim {aim} {mode}: {m:.4} ± {se:.4} ({:+.2}%)", err * 100.0);
+            assert!(
+                err.abs() < 0.025 + 4.0 * noise,
+                "aim {aim} {mode}: {:+.2}% off the path reference",
+                err * 100.0
+            );
+            stored.push(out.photon_stats.unwrap().caustic_stored);
+        }
+    }
+    assert!(
+        stored[2] > 3 * stored[0],
+        "aiming should store several times more caustic photons: {stored:?}"
+    );
+}

@@ -16,6 +16,7 @@ pub struct PhotonOverrides {
     pub max_radius: Option<f32>,
     pub kernel: Option<String>,
     pub radiance_photons: Option<bool>,
+    pub aim_caustics: Option<bool>,
 }
 
 /// Parameter names of `Integrator "photon"`.
@@ -31,6 +32,7 @@ pub const PARAMS: &[&str] = &[
     "alpha",
     "kernel",
     "radiancephotons",
+    "aimcaustics",
 ];
 
 fn choice<T>(
@@ -122,6 +124,7 @@ pub fn photon_settings(
             p.loc_of("kernel").as_ref(),
         )?;
         s.radiance_photons = p.get_bool("radiancephotons", s.radiance_photons)?;
+        s.aim_caustics = p.get_bool("aimcaustics", s.aim_caustics)?;
     }
     if let Some(v) = &ov.caustics {
         s.caustics = choice(
@@ -147,6 +150,7 @@ pub fn photon_settings(
     s.gather_rays = ov.gather_rays.unwrap_or(s.gather_rays);
     s.max_radius = ov.max_radius.unwrap_or(s.max_radius);
     s.radiance_photons = ov.radiance_photons.unwrap_or(s.radiance_photons);
+    s.aim_caustics = ov.aim_caustics.unwrap_or(s.aim_caustics);
     if !(s.max_radius >= 0.0) {
         return Err(Diagnostic::plain_error(format!(
             "max radius must be >= 0, found {}",

@@ -36,6 +36,16 @@ impl Material {
         }
     }
 
+    /// Perfectly specular everywhere (smooth glass or mirror): a target for
+    /// aimed caustic photons.
+    pub fn is_specular(&self) -> bool {
+        match self {
+            Material::Dielectric(m) => m.alpha_x.max(m.alpha_y) < 1e-3,
+            Material::Conductor(m) => m.alpha_x.max(m.alpha_y) < 1e-3,
+            _ => false,
+        }
+    }
+
     /// The BSDF in world space at a hit, with the shading frame.
     pub fn surface_bsdf(&self, geom: &SurfaceGeom) -> SurfaceBsdf {
         SurfaceBsdf::new(

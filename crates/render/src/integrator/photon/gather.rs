@@ -5,6 +5,7 @@
 //! `w_1`, `w_2`) and indirect light (gather rays reading the global map at
 //! their first non-delta hit; along glossy surfaces the same rules recurse).
 
+use super::aim::emitted_flux;
 use super::weights::{q1, q2, w1, w2};
 use super::{Kernel, PhotonMaps, PhotonSettings};
 use crate::bsdf::{SurfaceBsdf, TransportMode};
@@ -169,7 +170,18 @@ fn trace_gather(
             let mut sum = Rgb::BLACK;
             for &i in &scene.infinite_lights {
                 let le = scene.lights[i as usize].le(ray.d);
-                sum += le * caustic_gather_weight(ctx, g, le.luminance());
+                let flux = || {
+                    emitted_flux(
+                        scene,
+                        None,
+                        i,
+                        Vec3::ZERO,
+                        Vec3::ZERO,
+                        -ray.d,
+                        le.luminance(),
+                    )
+                };
+                sum += le * caustic_gather_weight(ctx, g, le.luminance(), flux);
             }
             return t * sum;
         };
@@ -182,7 +194,11 @@ fn trace_gather(
                 emitted_mis_n(scene, &h, &ray, x.geom.p, g.m2 as f32, g.pdf, false)
             } else {
                 let le = scene.lights[li as usize].l(h.geom.ng, -ray.d);
-                le * caustic_gather_weight(ctx, g, le.luminance())
+                let flux = || {
+                    let t = ctx.maps.targets.as_ref();
+                    emitted_flux(scene, t, li, h.geom.p, h.geom.ng, -ray.d, le.luminance())
+                };
+                le * caustic_gather_weight(ctx, g, le.luminance(), flux)
             };
         }
         let bsdf = scene.materials[h.material as usize].surface_bsdf(&h.geom);
@@ -223,9 +239,17 @@ fn trace_gather(
 }
 
 /// `w_2` of a gather ray that reached an emitter of luminance `le` through a specular chain.
-fn caustic_gather_weight(ctx: &PhotonCtx, g: &Gather, le: f32) -> f32 {
+///
+/// With aimed caustic photons the flux per photon varies: `flux` gives the
+/// (N times) flux a photon would carry along this path, replacing `Phi`.
+fn caustic_gather_weight(ctx: &PhotonCtx, g: &Gather, le: f32, flux: impl Fn() -> f32) -> f32 {
     let n = ctx.maps.caustic.emitted() as f64;
-    let q_1 = q1(n, le, g.cos_x, g.delta_a, ctx.maps.phi, g.alpha);
+    let phi = if ctx.maps.targets.is_some() {
+        flux()
+    } else {
+        ctx.maps.phi
+    };
+    let q_1 = q1(n, le, g.cos_x, g.delta_a, phi, g.alpha);
     let q_2 = q2(g.m2, g.pdf);
     w2(q_1, q_2, ctx.s.caustics, ctx.s.heuristic)
 }
@@ -264,7 +288,19 @@ fn caustic_photons(
             if f.is_black() {
                 continue;
             }
-            let q_1 = q1(n, ph.le(), wj.dot(x.geom.ns), delta_a, ctx.maps.phi, alpha);
+            // Aimed photons carry their own flux: Phi / N becomes the photon's power.
+            let q_1 = if ctx.maps.targets.is_some() {
+                q1(
+                    1.0,
+                    ph.le(),
+                    wj.dot(x.geom.ns),
+                    delta_a,
+                    ph.power().luminance(),
+                    alpha,
+                )
+            } else {
+                q1(n, ph.le(), wj.dot(x.geom.ns), delta_a, ctx.maps.phi, alpha)
+            };
             let q_2 = q2(m2, bsdf.pdf(wo, wj, TransportMode::Radiance));
             let w = w1(q_1, q_2, s.caustics, s.heuristic);
             if w == 0.0 {

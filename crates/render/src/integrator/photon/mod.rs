@@ -6,6 +6,7 @@
 //! and `render.rs` (pixel passes); per-path tracing in `trace.rs` (photons)
 //! and `gather.rs` (camera paths); settings here; weights in `weights.rs`.
 
+pub mod aim;
 pub mod gather;
 pub mod map;
 pub mod photon;
@@ -49,6 +50,9 @@ pub struct PhotonSettings {
     /// Read the global map through Christensen's precomputed radiance photons
     /// (true) or by direct k-nearest estimation (false).
     pub radiance_photons: bool,
+    /// Emit caustic photons only towards perfectly specular shapes
+    /// (see `aim.rs`); their fluxes then differ and q_1 uses each photon's own.
+    pub aim_caustics: bool,
 }
 
 impl Default for PhotonSettings {
@@ -65,6 +69,7 @@ impl Default for PhotonSettings {
             max_depth: 8,
             kernel: Kernel::None,
             radiance_photons: true,
+            aim_caustics: false,
         }
     }
 }
@@ -129,6 +134,8 @@ pub struct PhotonMaps {
     /// Total emitted power `Phi` (luminance) of all lights.
     pub phi: f32,
     pub max_radius: f32,
+    /// Set when caustic photons were aimed: q_1 then uses per-photon fluxes.
+    pub targets: Option<aim::Targets>,
     pub stats: PhotonStats,
 }
 
@@ -151,13 +158,17 @@ impl PhotonMaps {
             trace::MapKind::Global,
             seed,
             s.max_depth,
+            None,
         );
+        let targets =
+            Some(aim::Targets::from_scene(scene)).filter(|t| s.aim_caustics && !t.is_empty());
         let c = trace::trace_photons(
             scene,
             s.caustic_photons,
             trace::MapKind::Caustic,
             seed ^ 0x5eed,
             s.max_depth,
+            targets.as_ref(),
         );
         let trace_time = t0.elapsed();
         let t1 = Instant::now();
@@ -194,6 +205,7 @@ impl PhotonMaps {
             radiance,
             phi,
             max_radius,
+            targets,
             stats,
         }
     }

@@ -2,6 +2,7 @@
 //! draws its random numbers from a stream keyed by `i` alone, and chunks are
 //! concatenated in order).
 
+use super::aim::{aimed_emission, Targets};
 use super::photon::Photon;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
@@ -32,6 +33,7 @@ pub fn trace_photons(
     kind: MapKind,
     seed: u64,
     max_depth: u32,
+    targets: Option<&Targets>,
 ) -> Traced {
     if n_emit == 0 || scene.light_sampler.is_empty() {
         return Traced {
@@ -56,6 +58,7 @@ pub fn trace_photons(
                     n_emit,
                     kind,
                     max_depth,
+                    targets,
                     &mut sampler,
                     &mut out,
                     &mut rays,
@@ -77,11 +80,13 @@ pub fn trace_photons(
     all
 }
 
+#[allow(clippy::too_many_arguments)]
 fn trace_one(
     scene: &Scene,
     n_emit: u64,
     kind: MapKind,
     max_depth: u32,
+    targets: Option<&Targets>,
     sampler: &mut Sampler,
     out: &mut Traced,
     rays: &mut u64,
@@ -91,10 +96,20 @@ fn trace_one(
     };
     let light = &scene.lights[li as usize];
     let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
-    let Some(le) = light.sample_le(&scene.shapes, u1, u2) else {
-        return;
+    // Aimed caustic photons (area, point, spot lights), else ordinary emission.
+    let aimed =
+        targets.and_then(|t| aimed_emission(scene, t, light, pmf, u1, sampler.get_1d(), u2));
+    let (mut ray, flux, le_rgb) = match aimed {
+        Some(Some(e)) => e,
+        Some(None) => return,
+        None => {
+            let Some(le) = light.sample_le(&scene.shapes, u1, u2) else {
+                return;
+            };
+            (le.ray, le.flux_weight() / pmf, le.le)
+        }
     };
-    let mut power: Rgb = le.flux_weight() / (pmf * n_emit as f32);
+    let mut power: Rgb = flux / n_emit as f32;
     if !power.is_finite() || power.is_black() {
         return;
     }
@@ -102,9 +117,8 @@ fn trace_one(
     let le_lum = if light.is_delta() {
         f32::INFINITY
     } else {
-        le.le.luminance()
+        le_rgb.luminance()
     };
-    let mut ray = le.ray;
     let mut specular_only = true;
     for depth in 0..=max_depth {
         *rays += 1;
