@@ -122,13 +122,7 @@ pub fn build_lights(
                         l *= p.get_float("illuminance", 0.0)? / k;
                     }
                 }
-                if p.has("portal") {
-                    p.mark_used("portal");
-                    w.push(Diagnostic::warning(
-                        &p.loc_of("portal").unwrap(),
-                        "infinite light portals are not supported; ignored",
-                    ));
-                }
+                w.unsupported(p, &["portal"], "infinite light", "ignored");
                 w.unused(
                     p,
                     "light \"infinite\"",

@@ -34,6 +34,25 @@ impl Warnings {
     pub fn unused(&mut self, params: &lumis_scene::ParamSet, context: &str, known: &[&str]) {
         self.0.extend(params.report_unused(context, known));
     }
+    /// Each of `names` that is present: consumed, with a warning at its
+    /// location that `context` does not support it yet (`note` says what happens instead).
+    pub fn unsupported(
+        &mut self,
+        params: &lumis_scene::ParamSet,
+        names: &[&str],
+        context: &str,
+        note: &str,
+    ) {
+        for &name in names {
+            if let Some(loc) = params.loc_of(name) {
+                params.mark_used(name);
+                self.push(Diagnostic::warning(
+                    &loc,
+                    format!("{context} parameter `{name}` is not supported yet; {note}"),
+                ));
+            }
+        }
+    }
 }
 
 /// Values that win over the scene file's (the command line's).

@@ -86,21 +86,18 @@ pub fn build_options(
         let iso = p.get_float("iso", 100.0)?;
         let exposure = p.get_float("exposuretime", 1.0)?;
         imaging_scale = iso / 100.0 * exposure;
-        for ignored in [
-            "sensor",
-            "whitebalance",
-            "savefp16",
-            "diagonal",
-            "maxcomponentvalue",
-        ] {
-            if p.has(ignored) {
-                p.mark_used(ignored);
-                w.push(Diagnostic::warning(
-                    &p.loc_of(ignored).unwrap(),
-                    format!("film parameter `{ignored}` is not supported yet; ignored"),
-                ));
-            }
-        }
+        w.unsupported(
+            p,
+            &[
+                "sensor",
+                "whitebalance",
+                "savefp16",
+                "diagonal",
+                "maxcomponentvalue",
+            ],
+            "film",
+            "ignored",
+        );
         w.unused(
             p,
             "film \"rgb\"",

@@ -91,13 +91,7 @@ fn area_emission(
             l *= power / k_e;
         }
     }
-    if p.has("filename") {
-        p.mark_used("filename");
-        w.push(Diagnostic::warning(
-            &p.loc_of("filename").unwrap(),
-            "image area lights are not supported yet; using `L`",
-        ));
-    }
+    w.unsupported(p, &["filename"], "area light", "using `L`");
     w.unused(
         p,
         "area light \"diffuse\"",
@@ -115,15 +109,7 @@ fn build_shape(
 ) -> Result<Vec<Prim>, Diagnostic> {
     let e = &s.entity;
     let p = &e.params;
-    for q in ["alpha", "emissionfilename"] {
-        if p.has(q) {
-            p.mark_used(q);
-            w.push(Diagnostic::warning(
-                &p.loc_of(q).unwrap(),
-                format!("shape parameter `{q}` is not supported yet; ignored"),
-            ));
-        }
-    }
+    w.unsupported(p, &["alpha", "emissionfilename"], "shape", "ignored");
     let xf = s.object_to_world;
     let flip = s.reverse_orientation ^ xf.swaps_handedness();
     let prims = match e.ty.as_str() {
@@ -163,15 +149,7 @@ fn build_shape(
             let loc = p.loc_of("filename").unwrap_or(e.loc.clone());
             let ply = lumis_scene::ply::read_ply(&path)
                 .map_err(|err| Diagnostic::error(&loc, format!("{err}")))?;
-            for q in ["displacement", "edgelength"] {
-                if p.has(q) {
-                    p.mark_used(q);
-                    w.push(Diagnostic::warning(
-                        &p.loc_of(q).unwrap(),
-                        format!("plymesh `{q}` is not supported yet; ignored"),
-                    ));
-                }
-            }
+            w.unsupported(p, &["displacement", "edgelength"], "plymesh", "ignored");
             w.unused(p, "shape \"plymesh\"", &["filename"]);
             let indices = ply.indices.iter().map(|&i| i as i32).collect();
             let mesh = make_mesh(e, ply.positions, ply.normals, ply.uvs, indices, &xf, flip)?;
