@@ -7,8 +7,8 @@ use lumis_math::Vec3;
 use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays, MeshAccel};
 use lumis_render::integrator::photon::map::PhotonMap;
 use lumis_render::integrator::photon::PhotonMaps;
-use lumis_render::integrator::{render, RenderSettings};
-use lumis_render::load::{load_text, BuildOverrides, DEFAULT_SCENE};
+use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
+use lumis_render::load::{load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -28,6 +28,18 @@ fn time_it(reps: usize, mut f: impl FnMut()) -> f64 {
                 t.elapsed().as_secs_f64()
             })
             .collect(),
+    )
+}
+
+/// A whole render on all threads, seed 0, no progress display.
+fn render_all(l: &LoadedScene, spp: u32) -> RenderOutcome {
+    let settings = RenderSettings::from_options(&l.options, spp, 0, 0);
+    render(
+        &l.scene,
+        &l.options.integrator,
+        &settings,
+        &|_| {},
+        &AtomicBool::new(false),
     )
 }
 
@@ -123,14 +135,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
         .map_err(|d| anyhow::anyhow!("{d}"))?;
     let spp = 4;
-    let settings = RenderSettings::from_options(&l.options, spp, 0, 0);
-    let out = render(
-        &l.scene,
-        &l.options.integrator,
-        &settings,
-        &|_| {},
-        &AtomicBool::new(false),
-    );
+    let out = render_all(&l, spp);
     let secs = out.elapsed.as_secs_f64();
     println!(
         "| path, default scene {res}x{res}, {spp} spp ({threads} threads) | {:.2} Msamples/s, {:.2} Mrays/s, {:.2} s |",
@@ -212,14 +217,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     );
     drop(map);
 
-    let settings = RenderSettings::from_options(&l.options, l.options.spp, 0, 0);
-    let out = render(
-        &l.scene,
-        &l.options.integrator,
-        &settings,
-        &|_| {},
-        &AtomicBool::new(false),
-    );
+    let out = render_all(&l, l.options.spp);
     let (w, h) = (out.film.width(), out.film.height());
     println!(
         "| photon, default scene as shipped: {w}x{h}, {} spp ({threads} threads) | {:.1} s (incl. photon pass) |",

@@ -42,18 +42,12 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 
 fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
     use lumis_render::image_io::read_image;
-    use lumis_render::metrics::{compare, Region};
+    use lumis_render::metrics::compare;
     let t = read_image(&a.test)?;
     let r = read_image(&a.reference)?;
-    let region = a.mask.map(|m| {
-        let b = lumis_render::load::options::crop_bounds((t.width, t.height), m);
-        Region {
-            x0: b.x0,
-            x1: b.x1,
-            y0: b.y0,
-            y1: b.y1,
-        }
-    });
+    let region = a
+        .mask
+        .map(|m| lumis_render::load::options::crop_bounds((t.width, t.height), m));
     let m = compare(&t, &r, region).map_err(|e| anyhow::anyhow!("{}: {e}", a.test.display()))?;
     println!("pixels   {}", m.pixels);
     println!("MSE      {:.6e}", m.mse);

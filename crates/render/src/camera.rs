@@ -60,11 +60,6 @@ impl Camera {
         let d_w = self.world_from_camera.vector(d).normalize();
         Ray::new(o_w, d_w)
     }
-
-    /// World-space position of the camera (pinhole or lens centre).
-    pub fn position(&self) -> Vec3 {
-        self.world_from_camera.point(Vec3::ZERO)
-    }
 }
 
 #[cfg(test)]

@@ -2,14 +2,8 @@
 
 use crate::image_io::RgbImage;
 
-/// Pixel region `[x0, x1) x [y0, y1)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Region {
-    pub x0: u32,
-    pub x1: u32,
-    pub y0: u32,
-    pub y1: u32,
-}
+/// A pixel region `[x0, x1) x [y0, y1)`: the film's pixel bounds.
+pub use crate::film::PixelBounds as Region;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Metrics {

@@ -130,12 +130,6 @@ impl Scene {
         }
     }
 
-    pub fn bvh_memory_bytes(&self) -> usize {
-        self.bvh.memory_bytes()
-            + self.tri_verts.len() * std::mem::size_of::<([Vec3; 3], u32)>()
-            + self.prims.len() * std::mem::size_of::<PrimInfo>()
-    }
-
     /// Starts loading the triangle data of slots `start..start + count`.
     #[inline(always)]
     fn prefetch(&self, start: u32, count: u32) {
@@ -209,9 +203,5 @@ impl Scene {
     #[inline]
     pub fn count_rays(&self, n: u64) {
         self.counters.rays.fetch_add(n, Ordering::Relaxed);
-    }
-
-    pub fn rays_traced(&self) -> u64 {
-        self.counters.rays.load(Ordering::Relaxed)
     }
 }

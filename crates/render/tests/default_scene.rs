@@ -38,19 +38,28 @@ fn overrides() -> BuildOverrides {
     }
 }
 
-#[test]
-#[ignore = "writes the committed reference; run by hand"]
-fn make_reference() {
-    let l = load(DEFAULT_SCENE, &overrides());
-    let mut st = settings(&l, REF_SPP, 12345, 0);
+/// A render whose samples are clamped at [`CLAMP`], as the reference's.
+fn render_clamped(
+    l: &lumis_render::load::LoadedScene,
+    spp: u32,
+    seed: u64,
+) -> lumis_render::integrator::RenderOutcome {
+    let mut st = settings(l, spp, seed, 0);
     st.clamp = Some(CLAMP);
-    let out = lumis_render::integrator::render(
+    lumis_render::integrator::render(
         &l.scene,
         &l.options.integrator,
         &st,
         &|_| {},
         &Default::default(),
-    );
+    )
+}
+
+#[test]
+#[ignore = "writes the committed reference; run by hand"]
+fn make_reference() {
+    let l = load(DEFAULT_SCENE, &overrides());
+    let out = render_clamped(&l, REF_SPP, 12345);
     let cmd =
         "cargo test --release -p lumis-render --test default_scene -- --ignored make_reference";
     for (name, pixels) in [
@@ -75,15 +84,7 @@ fn default_scene_matches_reference() {
     assert_eq!(mean.meta("lumis:spp"), Some(REF_SPP.to_string().as_str()));
     let l = load(DEFAULT_SCENE, &overrides());
     let spp = 1024;
-    let mut st = settings(&l, spp, 99, 0);
-    st.clamp = Some(CLAMP);
-    let out = lumis_render::integrator::render(
-        &l.scene,
-        &l.options.integrator,
-        &st,
-        &|_| {},
-        &Default::default(),
-    );
+    let out = render_clamped(&l, spp, 99);
     // The test's variance comes from the reference's per-sample variance scaled to
     // `spp`: at 256 spp the caustic paths' heavy tail makes a render's own variance
     // estimate too small exactly where it matters (no firefly sampled yet).

@@ -48,14 +48,6 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
-impl BsdfSample {
-    /// Path throughput weight `f |cos wi| / pdf` (uses the local `wi.z`, so
-    /// only valid before conversion to world space).
-    pub fn weight_local(&self) -> Rgb {
-        self.f * (self.wi.z.abs() / self.pdf)
-    }
-}
-
 /// All BSDFs of lumis.
 #[derive(Clone, Copy, Debug)]
 pub enum Bsdf {

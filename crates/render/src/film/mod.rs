@@ -109,11 +109,6 @@ impl Film {
             .flat_map(|p| p.variance_of_mean().to_array())
             .collect()
     }
-
-    /// Samples in the least-sampled pixel.
-    pub fn min_samples(&self) -> u64 {
-        self.pixels.iter().map(|p| p.n).min().unwrap_or(0)
-    }
 }
 
 #[cfg(test)]
