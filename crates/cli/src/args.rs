@@ -116,6 +116,39 @@ pub struct RenderArgs {
     /// Print no progress, only warnings, errors and the summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// More detail: phase timings and settings (-v), and per-pass lines (-vv).
+    #[arg(short, long, action = clap::ArgAction::Count)]
+    pub verbose: u8,
+    /// Print statistics at the end: rays by kind, photons, memory, time by phase.
+    #[arg(long)]
+    pub stats: bool,
+    /// Save the render's state to FILE (atomically) every --checkpoint-every
+    /// seconds, on interrupt and at the end, for --resume.
+    #[arg(long, value_name = "FILE")]
+    pub checkpoint: Option<PathBuf>,
+    /// Seconds between checkpoints.
+    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+    pub checkpoint_every: f64,
+    /// Continue the render saved in FILE: alone, it reruns the saved command
+    /// (only --threads, --time, --checkpoint*, --display-server, -q/-v and
+    /// --stats may be given); with a scene, that scene and these options must
+    /// be the saved ones.
+    #[arg(long, value_name = "FILE")]
+    pub resume: Option<PathBuf>,
+    /// Stream the image as it converges to a tev viewer at HOST:PORT (tev listens on 127.0.0.1:14158).
+    #[arg(long, value_name = "HOST:PORT")]
+    pub display_server: Option<String>,
+    /// Test hook: make the sample at pixel X,Y with index S a NaN.
+    #[arg(long, hide = true, value_name = "X,Y,S", value_parser = parse_triple)]
+    pub inject_nan: Option<(u32, u32, u32)>,
+}
+
+fn parse_triple(s: &str) -> Result<(u32, u32, u32), String> {
+    let v: Result<Vec<u32>, _> = s.split(',').map(|t| t.trim().parse::<u32>()).collect();
+    match v.as_deref() {
+        Ok([a, b, c]) => Ok((*a, *b, *c)),
+        _ => Err(format!("expected three integers X,Y,S, found `{s}`")),
+    }
 }
 
 fn parse_resolution(s: &str) -> Result<(u32, u32), String> {

@@ -3,6 +3,7 @@
 mod args;
 mod bench;
 mod progress;
+mod resume;
 mod run;
 
 use clap::Parser;

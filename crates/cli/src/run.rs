@@ -4,8 +4,9 @@ use crate::args::{Cli, Command, RenderArgs};
 use crate::progress::Reporter;
 use anyhow::{bail, Context, Result};
 use lumis_math::SamplerKind;
+use lumis_render::checkpoint::Checkpoint;
 use lumis_render::image_io::{write_image, ImageFormat, RgbImage};
-use lumis_render::integrator::{render, RenderSettings};
+use lumis_render::integrator::{render_with, BadSample, RenderHooks, RenderSettings, RenderState};
 use lumis_render::load::photon::PhotonOverrides;
 use lumis_render::load::{load_path, load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
 use std::path::{Path, PathBuf};
@@ -118,7 +119,18 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             bail!("--time must be a positive number of seconds, found {t}");
         }
     }
+    if !(a.checkpoint_every >= 0.0 && a.checkpoint_every.is_finite()) {
+        bail!(
+            "--checkpoint-every must be a number of seconds >= 0, found {}",
+            a.checkpoint_every
+        );
+    }
+    let (a, resumed) = crate::resume::prepare(a)?;
     let ov = overrides(&a)?;
+    let scene_text: Vec<u8> = match &a.scene {
+        Some(p) => std::fs::read(p).unwrap_or_default(),
+        None => DEFAULT_SCENE.as_bytes().to_vec(),
+    };
     let loaded: LoadedScene = match &a.scene {
         Some(p) => load_path(p, &ov),
         None => load_text(
@@ -135,26 +147,95 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     let o = &loaded.options;
     let files = outputs(&a, o.filename.as_deref())?;
     // With only a time budget, the sample count is unbounded.
-    let spp = if a.time.is_some() && a.spp.is_none() {
-        0
-    } else {
-        o.spp
+    let spp = match &resumed {
+        Some(ck) if ck.spp_target == 0 && a.spp.is_none() => {
+            if a.time.is_none() {
+                bail!("this render had only a time budget: give --time SECONDS to resume it");
+            }
+            0
+        }
+        Some(_) => o.spp,
+        None if a.time.is_some() && a.spp.is_none() => 0,
+        None => o.spp,
     };
     let settings = RenderSettings {
         time_limit: a.time.map(Duration::from_secs_f64),
         clamp: a.clamp,
+        inject_nan: a.inject_nan,
         ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
     };
+    let hash = crate::resume::scene_hash(&scene_text, o, &settings);
+    let mut resume_state = None;
+    let mut command: Vec<String> = std::env::args().skip(1).collect();
+    let mut cwd = std::env::current_dir()
+        .map(|d| d.display().to_string())
+        .unwrap_or_default();
+    if let (Some(ck), Some(file)) = (resumed, &a.resume) {
+        crate::resume::check(&ck, file, hash)?;
+        eprintln!(
+            "lumis: resuming {} at {} spp of {}",
+            file.display(),
+            ck.state.spp_done,
+            if ck.spp_target == 0 {
+                "a time budget".to_string()
+            } else {
+                ck.spp_target.to_string()
+            }
+        );
+        if !ck.command.is_empty() {
+            command = ck.command;
+            cwd = ck.cwd;
+        }
+        resume_state = Some(ck.state);
+    }
+    let mut saver = a.checkpoint.as_ref().map(|path| {
+        let path = std::path::absolute(path).unwrap_or(path.clone());
+        crate::resume::Saver::new(
+            path,
+            Duration::from_secs_f64(a.checkpoint_every),
+            Checkpoint {
+                lumis_version: env!("CARGO_PKG_VERSION").into(),
+                scene_hash: hash,
+                seed: a.seed,
+                spp_target: settings.spp,
+                command,
+                cwd,
+                state: RenderState {
+                    film: lumis_render::film::Film::new((1, 1), o.crop),
+                    spp_done: 0,
+                    alpha: 1.0,
+                    bad_samples: 0,
+                    first_bad: None,
+                    rays: 0,
+                    elapsed: Duration::ZERO,
+                },
+            },
+        )
+    });
     let reporter = Reporter::new(a.quiet);
     install_interrupt_handler();
-    let out = render(
+    let mut after_pass = |st: &RenderState| {
+        if let Some(sv) = saver.as_mut() {
+            sv.maybe_save(st);
+        }
+    };
+    let out = render_with(
         &loaded.scene,
         &o.integrator,
         &settings,
-        &|p| reporter.update(p),
-        &CANCEL,
+        RenderHooks {
+            progress: &|p| reporter.update(p),
+            cancel: &CANCEL,
+            after_pass: Some(&mut after_pass),
+            resume: resume_state,
+        },
     );
     reporter.finish();
+    if let Some(sv) = saver.as_mut() {
+        if sv.save(&out.state()) {
+            eprintln!("lumis: checkpoint {} at {} spp", sv.path.display(), out.spp);
+        }
+    }
     let mut data = out.film.mean_image();
     if o.imaging_scale != 1.0 {
         data.iter_mut().for_each(|v| *v *= o.imaging_scale);
@@ -170,11 +251,18 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         ("lumis:integrator".into(), o.integrator.kind.name().into()),
         ("lumis:seed".into(), a.seed.to_string()),
         ("lumis:scene".into(), scene_name),
+        ("lumis:bad_samples".into(), out.bad_samples.to_string()),
         (
             "lumis:command".into(),
             std::env::args().collect::<Vec<_>>().join(" "),
         ),
     ];
+    if let Some(b) = out.first_bad {
+        img.metadata.push((
+            "lumis:first_bad_sample".into(),
+            format!("pixel {},{} sample {}", b.x, b.y, b.sample),
+        ));
+    }
     for f in &files {
         write_image(f, &img, a.exposure).with_context(|| format!("writing {}", f.display()))?;
     }
@@ -201,19 +289,23 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             ps.memory_bytes as f64 / (1u64 << 20) as f64
         );
     }
+    if out.bad_samples > 0 {
+        let b = out.first_bad.unwrap_or(BadSample {
+            x: 0,
+            y: 0,
+            sample: 0,
+        });
+        eprintln!(
+            "lumis: dropped {} NaN/infinite samples (first at pixel {},{}, sample {})",
+            out.bad_samples, b.x, b.y, b.sample
+        );
+    }
     if out.interrupted {
         eprintln!(
             "lumis: interrupted: wrote the image so far ({} spp)",
             out.spp
         );
         return Ok(ExitCode::from(EXIT_INTERRUPTED));
-    }
-    if out.bad_samples > 0 {
-        let (x, y) = out.first_bad_pixel.unwrap_or((0, 0));
-        eprintln!(
-            "lumis: dropped {} NaN/infinite samples (first at pixel {x},{y})",
-            out.bad_samples
-        );
     }
     Ok(ExitCode::SUCCESS)
 }

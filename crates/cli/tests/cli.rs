@@ -247,3 +247,149 @@ fn photon_budget_beyond_memory_is_refused_naming_the_parameter() {
     assert!(e.contains("caustic-photons") && e.contains("GiB"), "{e}");
     assert!(!d.join("m.exr").exists());
 }
+
+fn exr_bits(p: &Path) -> (u32, Vec<u32>) {
+    let img = lumis_render::image_io::read_image(p).unwrap();
+    let spp = img.meta("lumis:spp").unwrap().parse().unwrap();
+    (spp, img.data.iter().map(|v| v.to_bits()).collect())
+}
+
+#[test]
+fn checkpoint_then_resume_equals_an_uninterrupted_render() {
+    let d = temp_dir("resume");
+    let common = [
+        "render",
+        "--integrator",
+        "path",
+        "--resolution",
+        "48x32",
+        "--spp",
+        "200",
+        "--seed",
+        "3",
+        "-q",
+    ];
+    let run = |extra: &[&str]| lumis(&d, &[&common[..], extra].concat());
+    let o = run(&["-o", "full.exr"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A time budget stops the render early; the checkpoint keeps its state.
+    let o = run(&["-o", "part.exr", "--time", "0.2", "--checkpoint", "ck"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (part_spp, _) = exr_bits(&d.join("part.exr"));
+    assert!(part_spp < 200, "budget should stop early ({part_spp} spp)");
+    // Resume from another folder: the saved command runs in its own folder.
+    let o = lumis(
+        &std::env::temp_dir(),
+        &[
+            "render",
+            "--resume",
+            d.join("ck").to_str().unwrap(),
+            "--threads",
+            "1",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("resuming"), "{}", stderr(&o));
+    let (spp, resumed) = exr_bits(&d.join("part.exr"));
+    let (full_spp, full) = exr_bits(&d.join("full.exr"));
+    assert_eq!((spp, full_spp), (200, 200));
+    assert!(
+        resumed == full,
+        "resumed image differs from the uninterrupted one"
+    );
+    // Another scene (here: the same text with one comment added) is refused.
+    let text = format!("{}\n# edited\n", lumis_render::load::DEFAULT_SCENE);
+    std::fs::write(d.join("edited.pbrt"), text).unwrap();
+    let o = lumis(
+        &d,
+        &[
+            &common[..],
+            &["edited.pbrt", "--resume", "ck", "-o", "e.exr"],
+        ]
+        .concat(),
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("another scene"), "{}", stderr(&o));
+    assert!(!d.join("e.exr").exists());
+    // Not a checkpoint at all.
+    let o = lumis(&d, &["render", "--resume", "full.exr"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("not a lumis checkpoint"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn interrupt_writes_a_checkpoint_that_resumes() {
+    let d = temp_dir("sigint-ck");
+    let child = Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args([
+            "render",
+            "--integrator",
+            "path",
+            "--resolution",
+            "16x16",
+            "--spp",
+            "1000000",
+            "-o",
+            "int.exr",
+            "-q",
+            "--checkpoint",
+            "ck",
+            "--checkpoint-every",
+            "1000",
+        ])
+        .current_dir(&d)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1000));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
+    let (spp, _) = exr_bits(&d.join("int.exr"));
+    let ck = lumis_render::checkpoint::Checkpoint::load(&d.join("ck")).unwrap();
+    assert_eq!(ck.state.spp_done, spp);
+    assert_eq!(ck.spp_target, 1_000_000);
+    assert!(ck.state.film.pixels.iter().all(|p| p.n == spp as u64));
+}
+
+#[test]
+fn nan_samples_are_dropped_counted_and_located_in_summary_and_exr() {
+    let d = temp_dir("nan");
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--integrator",
+            "path",
+            "--resolution",
+            "12x8",
+            "--spp",
+            "4",
+            "--inject-nan",
+            "3,2,1",
+            "-o",
+            "n.exr",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("dropped 1 NaN/infinite samples (first at pixel 3,2, sample 1)"),
+        "{}",
+        stderr(&o)
+    );
+    let img = lumis_render::image_io::read_image(&d.join("n.exr")).unwrap();
+    assert_eq!(img.meta("lumis:bad_samples"), Some("1"));
+    assert_eq!(
+        img.meta("lumis:first_bad_sample"),
+        Some("pixel 3,2 sample 1")
+    );
+    assert!(img.data.iter().all(|v| v.is_finite()));
+}

@@ -4,6 +4,7 @@
 pub mod accel;
 pub mod bsdf;
 pub mod camera;
+pub mod checkpoint;
 pub mod film;
 pub mod geometry;
 pub mod image_io;

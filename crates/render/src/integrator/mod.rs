@@ -11,7 +11,10 @@ pub mod path;
 pub mod photon;
 pub mod render;
 
-pub use render::{render, Progress, RenderOutcome, RenderSettings};
+pub use render::{
+    render, render_with, BadSample, Progress, RenderHooks, RenderOutcome, RenderSettings,
+    RenderState,
+};
 
 use crate::geometry::Ray;
 use crate::scene::Scene;

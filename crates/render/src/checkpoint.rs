@@ -1,0 +1,381 @@
+//! Checkpoints: a render's accumulated state (per-pixel Welford statistics,
+//! sample counts, the next pass, `alpha`, dropped-sample counts) in a small
+//! binary file, written atomically, so `lumis render --resume` can continue
+//! exactly where it stopped. Photon maps are not stored: they are rebuilt
+//! from the seed, which reproduces them bit for bit.
+//!
+//! Layout (little-endian): magic `LUMISCKP`, format version (u32), lumis
+//! version (string), scene hash (u64), seed (u64), target spp (u32), the
+//! command line and its folder (strings), the state, then an FNV-1a hash of
+//! everything before it (catches truncated or damaged files).
+
+use crate::film::{Film, Pixel, PixelBounds};
+use crate::integrator::{BadSample, RenderState};
+use std::path::Path;
+use std::time::Duration;
+
+const MAGIC: &[u8; 8] = b"LUMISCKP";
+/// Bumped whenever the layout changes.
+pub const FORMAT_VERSION: u32 = 1;
+/// Bytes per saved pixel: n, mean[3], m2[3].
+const PIXEL_BYTES: usize = 56;
+
+#[derive(Clone, Debug)]
+pub struct Checkpoint {
+    /// The lumis version that wrote it; others refuse it (sampling may differ).
+    pub lumis_version: String,
+    /// Hash of the scene text and every setting that changes the image.
+    pub scene_hash: u64,
+    pub seed: u64,
+    /// Samples per pixel the render aims at (0: time budget only).
+    pub spp_target: u32,
+    /// Command line (without the program name) and the folder it ran in.
+    pub command: Vec<String>,
+    pub cwd: String,
+    pub state: RenderState,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum CheckpointError {
+    #[error("{0}: {1}")]
+    Io(String, std::io::Error),
+    #[error("{0}: not a lumis checkpoint")]
+    NotCheckpoint(String),
+    #[error("{path}: checkpoint format {found}, this lumis reads format {FORMAT_VERSION}; finish it with the lumis that wrote it")]
+    Format { path: String, found: u32 },
+    #[error("{path}: checkpoint written by lumis {found}, this is lumis {expected}; sampling may differ, so it cannot be resumed exactly (use lumis {found})")]
+    Version {
+        path: String,
+        found: String,
+        expected: String,
+    },
+    #[error("{0}: checkpoint is truncated or damaged ({1})")]
+    Damaged(String, &'static str),
+}
+
+/// FNV-1a, 64-bit: a stable hash (std's hashers may change between releases).
+#[derive(Clone, Copy, Debug)]
+pub struct Fnv(pub u64);
+
+impl Default for Fnv {
+    fn default() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv {
+    pub fn write(&mut self, bytes: &[u8]) -> &mut Fnv {
+        for &b in bytes {
+            self.0 ^= b as u64;
+            self.0 = self.0.wrapping_mul(0x100_0000_01b3);
+        }
+        self
+    }
+    /// A length-prefixed string, so ("ab","c") and ("a","bc") differ.
+    pub fn write_str(&mut self, s: &str) -> &mut Fnv {
+        self.write(&(s.len() as u64).to_le_bytes())
+            .write(s.as_bytes())
+    }
+}
+
+impl Checkpoint {
+    pub fn encode(&self) -> Vec<u8> {
+        let st = &self.state;
+        let mut o = Vec::with_capacity(256 + st.film.pixels.len() * PIXEL_BYTES);
+        o.extend_from_slice(MAGIC);
+        o.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        put_str(&mut o, &self.lumis_version);
+        o.extend_from_slice(&self.scene_hash.to_le_bytes());
+        o.extend_from_slice(&self.seed.to_le_bytes());
+        o.extend_from_slice(&self.spp_target.to_le_bytes());
+        o.extend_from_slice(&(self.command.len() as u32).to_le_bytes());
+        for a in &self.command {
+            put_str(&mut o, a);
+        }
+        put_str(&mut o, &self.cwd);
+        o.extend_from_slice(&st.spp_done.to_le_bytes());
+        o.extend_from_slice(&st.alpha.to_bits().to_le_bytes());
+        o.extend_from_slice(&st.bad_samples.to_le_bytes());
+        let fb = st.first_bad.map_or([u32::MAX; 3], |b| [b.x, b.y, b.sample]);
+        for v in fb {
+            o.extend_from_slice(&v.to_le_bytes());
+        }
+        o.extend_from_slice(&st.rays.to_le_bytes());
+        o.extend_from_slice(&(st.elapsed.as_nanos() as u64).to_le_bytes());
+        let f = &st.film;
+        let b = f.bounds;
+        for v in [
+            f.full_resolution.0,
+            f.full_resolution.1,
+            b.x0,
+            b.x1,
+            b.y0,
+            b.y1,
+        ] {
+            o.extend_from_slice(&v.to_le_bytes());
+        }
+        for p in &f.pixels {
+            o.extend_from_slice(&p.n.to_le_bytes());
+            for v in p.mean.iter().chain(&p.m2) {
+                o.extend_from_slice(&v.to_bits().to_le_bytes());
+            }
+        }
+        let h = Fnv::default().write(&o).0;
+        o.extend_from_slice(&h.to_le_bytes());
+        o
+    }
+
+    /// Reads a checkpoint; `name` labels errors. Sizes are checked against
+    /// the data present before anything is allocated.
+    pub fn decode(bytes: &[u8], name: &str) -> Result<Checkpoint, CheckpointError> {
+        let damaged = |what| CheckpointError::Damaged(name.to_string(), what);
+        if bytes.len() < 12 || &bytes[..8] != MAGIC {
+            return Err(CheckpointError::NotCheckpoint(name.to_string()));
+        }
+        let mut r = Reader {
+            b: bytes,
+            at: 8,
+            name,
+        };
+        let format = r.u32()?;
+        if format != FORMAT_VERSION {
+            return Err(CheckpointError::Format {
+                path: name.to_string(),
+                found: format,
+            });
+        }
+        let lumis_version = r.string()?;
+        if lumis_version != env!("CARGO_PKG_VERSION") {
+            return Err(CheckpointError::Version {
+                path: name.to_string(),
+                found: lumis_version,
+                expected: env!("CARGO_PKG_VERSION").to_string(),
+            });
+        }
+        let (body, tail) = bytes.split_at(bytes.len() - 8);
+        if Fnv::default().write(body).0 != u64::from_le_bytes(tail.try_into().unwrap()) {
+            return Err(damaged("checksum mismatch"));
+        }
+        r.b = body;
+        let scene_hash = r.u64()?;
+        let seed = r.u64()?;
+        let spp_target = r.u32()?;
+        let n_args = r.u32()? as usize;
+        if n_args > r.left() / 8 {
+            return Err(damaged("bad command length"));
+        }
+        let command = (0..n_args)
+            .map(|_| r.string())
+            .collect::<Result<Vec<_>, _>>()?;
+        let cwd = r.string()?;
+        let spp_done = r.u32()?;
+        let alpha = f32::from_bits(r.u32()?);
+        let bad_samples = r.u64()?;
+        let fb = [r.u32()?, r.u32()?, r.u32()?];
+        let first_bad = (fb != [u32::MAX; 3]).then_some(BadSample {
+            x: fb[0],
+            y: fb[1],
+            sample: fb[2],
+        });
+        let rays = r.u64()?;
+        let elapsed = Duration::from_nanos(r.u64()?);
+        let full = (r.u32()?, r.u32()?);
+        let bounds = PixelBounds {
+            x0: r.u32()?,
+            x1: r.u32()?,
+            y0: r.u32()?,
+            y1: r.u32()?,
+        };
+        if bounds.x0 >= bounds.x1
+            || bounds.y0 >= bounds.y1
+            || bounds.x1 > full.0
+            || bounds.y1 > full.1
+        {
+            return Err(damaged("bad film bounds"));
+        }
+        if bounds.area().checked_mul(PIXEL_BYTES as u64) != Some(r.left() as u64) {
+            return Err(damaged("pixel data does not match the film size"));
+        }
+        let mut pixels = Vec::with_capacity(bounds.area() as usize);
+        for _ in 0..bounds.area() {
+            let n = r.u64()?;
+            let mut v = [0.0f64; 6];
+            for x in &mut v {
+                *x = f64::from_bits(r.u64()?);
+            }
+            pixels.push(Pixel {
+                n,
+                mean: [v[0], v[1], v[2]],
+                m2: [v[3], v[4], v[5]],
+            });
+        }
+        Ok(Checkpoint {
+            lumis_version,
+            scene_hash,
+            seed,
+            spp_target,
+            command,
+            cwd,
+            state: RenderState {
+                film: Film {
+                    full_resolution: full,
+                    bounds,
+                    pixels,
+                },
+                spp_done,
+                alpha,
+                bad_samples,
+                first_bad,
+                rays,
+                elapsed,
+            },
+        })
+    }
+
+    /// Writes to a temporary file in the same folder, then renames: a crash
+    /// mid-write leaves the previous checkpoint intact.
+    pub fn save(&self, path: &Path) -> Result<(), CheckpointError> {
+        let io = |e| CheckpointError::Io(path.display().to_string(), e);
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default();
+        let tmp = path.with_file_name(format!(".{name}.tmp{}", std::process::id()));
+        if let Err(e) = std::fs::write(&tmp, self.encode()) {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(io(e));
+        }
+        std::fs::rename(&tmp, path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            io(e)
+        })
+    }
+
+    pub fn load(path: &Path) -> Result<Checkpoint, CheckpointError> {
+        let bytes =
+            std::fs::read(path).map_err(|e| CheckpointError::Io(path.display().to_string(), e))?;
+        Checkpoint::decode(&bytes, &path.display().to_string())
+    }
+}
+
+fn put_str(o: &mut Vec<u8>, s: &str) {
+    o.extend_from_slice(&(s.len() as u32).to_le_bytes());
+    o.extend_from_slice(s.as_bytes());
+}
+
+struct Reader<'a> {
+    b: &'a [u8],
+    at: usize,
+    name: &'a str,
+}
+
+impl Reader<'_> {
+    fn left(&self) -> usize {
+        self.b.len().saturating_sub(self.at)
+    }
+    fn take(&mut self, n: usize) -> Result<&[u8], CheckpointError> {
+        if self.left() < n {
+            return Err(CheckpointError::Damaged(
+                self.name.to_string(),
+                "ends early",
+            ));
+        }
+        self.at += n;
+        Ok(&self.b[self.at - n..self.at])
+    }
+    fn u32(&mut self) -> Result<u32, CheckpointError> {
+        Ok(u32::from_le_bytes(self.take(4)?.try_into().unwrap()))
+    }
+    fn u64(&mut self) -> Result<u64, CheckpointError> {
+        Ok(u64::from_le_bytes(self.take(8)?.try_into().unwrap()))
+    }
+    fn string(&mut self) -> Result<String, CheckpointError> {
+        let n = self.u32()? as usize;
+        let b = self.take(n)?;
+        String::from_utf8(b.to_vec())
+            .map_err(|_| CheckpointError::Damaged(self.name.to_string(), "bad text"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lumis_math::Rgb;
+
+    fn sample() -> Checkpoint {
+        let bounds = PixelBounds {
+            x0: 1,
+            x1: 4,
+            y0: 0,
+            y1: 2,
+        };
+        let mut film = Film::new((5, 2), bounds);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            p.add(Rgb::new(i as f32, 0.1, 1e-30));
+            p.add(Rgb::new(0.3, i as f32 * 7.0, 2.0));
+        }
+        Checkpoint {
+            lumis_version: env!("CARGO_PKG_VERSION").into(),
+            scene_hash: 42,
+            seed: 7,
+            spp_target: 16,
+            command: vec!["render".into(), "a b.pbrt".into()],
+            cwd: "/tmp".into(),
+            state: RenderState {
+                film,
+                spp_done: 2,
+                alpha: 16.0,
+                bad_samples: 3,
+                first_bad: Some(BadSample {
+                    sample: 1,
+                    y: 0,
+                    x: 2,
+                }),
+                rays: 1234,
+                elapsed: Duration::from_millis(1500),
+            },
+        }
+    }
+
+    #[test]
+    fn round_trips_bit_for_bit() {
+        let c = sample();
+        let bytes = c.encode();
+        let d = Checkpoint::decode(&bytes, "x").unwrap();
+        assert_eq!(d.encode(), bytes);
+        assert_eq!(d.command, c.command);
+        assert_eq!(d.state.first_bad, c.state.first_bad);
+        for (a, b) in d.state.film.pixels.iter().zip(&c.state.film.pixels) {
+            assert_eq!(a.n, b.n);
+            assert_eq!(a.mean.map(f64::to_bits), b.mean.map(f64::to_bits));
+            assert_eq!(a.m2.map(f64::to_bits), b.m2.map(f64::to_bits));
+        }
+    }
+
+    #[test]
+    fn damaged_truncated_and_foreign_files_are_refused() {
+        let bytes = sample().encode();
+        for cut in [0, 5, 11, 40, bytes.len() / 2, bytes.len() - 1] {
+            assert!(Checkpoint::decode(&bytes[..cut], "x").is_err(), "cut {cut}");
+        }
+        let mut flipped = bytes.clone();
+        let n = flipped.len();
+        flipped[n - 20] ^= 1;
+        let e = Checkpoint::decode(&flipped, "x").unwrap_err().to_string();
+        assert!(e.contains("damaged"), "{e}");
+        let mut other = sample();
+        other.lumis_version = "0.0.1-other".into();
+        let e = Checkpoint::decode(&other.encode(), "x")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("lumis 0.0.1-other"), "{e}");
+        let mut fmt = bytes.clone();
+        fmt[8] = 99;
+        let e = Checkpoint::decode(&fmt, "x").unwrap_err().to_string();
+        assert!(e.contains("format 99"), "{e}");
+        let e = Checkpoint::decode(b"P6\n1 1\n255\n000", "x")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not a lumis checkpoint"), "{e}");
+    }
+}
