@@ -54,8 +54,25 @@ pub struct ShapeDesc {
     pub reverse_orientation: bool,
     pub material: MaterialRef,
     pub area_light: Option<Entity>,
-    /// Always `None` for now: shapes inside `ObjectBegin` are dropped.
-    pub inside_object: Option<String>,
+}
+
+/// An object (`ObjectBegin "name"` ... `ObjectEnd`): shapes placed by
+/// `ObjectInstance`. Each shape's `object_to_world` is the CTM at its
+/// `Shape` directive; an instance puts it at its own CTM on top of that.
+#[derive(Clone, Debug)]
+pub struct ObjectDesc {
+    pub name: String,
+    pub loc: Loc,
+    pub shapes: Vec<ShapeDesc>,
+}
+
+/// `ObjectInstance "name"`: world-from-object is the CTM at the directive.
+#[derive(Clone, Debug)]
+pub struct InstanceDesc {
+    /// Index into `SceneDesc::objects`.
+    pub object: u32,
+    pub world_from_object: Transform,
+    pub loc: Loc,
 }
 
 #[derive(Clone, Debug)]
@@ -78,6 +95,8 @@ pub struct SceneDesc {
     pub named_materials: HashMap<String, u32>,
     pub textures: Vec<TextureDesc>,
     pub shapes: Vec<ShapeDesc>,
+    pub objects: Vec<ObjectDesc>,
+    pub instances: Vec<InstanceDesc>,
     pub lights: Vec<LightDesc>,
     pub warnings: Vec<Diagnostic>,
     pub saw_world_begin: bool,

@@ -83,9 +83,18 @@ pub(crate) struct Builder {
     gs: GraphicsState,
     stack: Vec<(Scope, GraphicsState, Loc)>,
     coord_systems: HashMap<String, Transform>,
-    /// Name of the open `ObjectBegin`, if any: its shapes are dropped.
-    object: Option<String>,
+    /// Index (in `desc.objects`) of the open `ObjectBegin`, if any.
+    object: Option<u32>,
+    object_names: HashMap<String, u32>,
+    /// `ObjectInstance`s, resolved at the end (objects may be defined later).
+    pending_instances: Vec<PendingInstance>,
     depth: usize,
+}
+
+pub(crate) struct PendingInstance {
+    name: String,
+    loc: Loc,
+    world_from_object: Transform,
 }
 
 /// Parses scene text (and its `Include`s) into a description.
@@ -101,9 +110,26 @@ pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, D
         stack: Vec::new(),
         coord_systems: HashMap::new(),
         object: None,
+        object_names: HashMap::new(),
+        pending_instances: Vec::new(),
         depth: 0,
     };
     b.run(SourceFile::new(name, text))?;
+    for inst in std::mem::take(&mut b.pending_instances) {
+        let Some(&object) = b.object_names.get(&inst.name) else {
+            let names: Vec<&str> = b.object_names.keys().map(|s| s.as_str()).collect();
+            let d = Diagnostic::error(&inst.loc, format!("object `{}` is not defined", inst.name));
+            return Err(match suggest(&inst.name, &names, 2) {
+                Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                None => d.with_help("define it with ObjectBegin \"name\" ... ObjectEnd"),
+            });
+        };
+        b.desc.instances.push(crate::desc::InstanceDesc {
+            object,
+            world_from_object: inst.world_from_object,
+            loc: inst.loc,
+        });
+    }
     for (scope, _, loc) in std::mem::take(&mut b.stack) {
         let what = match scope {
             Scope::Attribute => "AttributeBegin has no matching AttributeEnd",

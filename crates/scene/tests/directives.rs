@@ -211,12 +211,10 @@ fn unsupported_directives_warn_and_skip_their_arguments() {
         ActiveTransform StartTime Translate 1 0 0 ActiveTransform All
         MediumInterface "" "fog"
         Attribute "shape" "float radius" 2
-        ObjectBegin "thing" Shape "sphere" ObjectEnd
-        ObjectInstance "thing"
         Shape "disk"
         WorldEnd"#,
     );
-    assert_eq!(d.shapes.len(), 1, "shapes inside ObjectBegin are dropped");
+    assert_eq!(d.shapes.len(), 1);
     assert_eq!(d.shapes[0].entity.ty, "disk");
     let msgs: Vec<&str> = d.warnings.iter().map(|w| w.message.as_str()).collect();
     for needle in [
@@ -227,8 +225,6 @@ fn unsupported_directives_warn_and_skip_their_arguments() {
         "ActiveTransform",
         "MediumInterface",
         "Attribute \"shape\"",
-        "object `thing`",
-        "ObjectInstance",
         "WorldEnd",
     ] {
         assert!(
@@ -302,4 +298,93 @@ fn include_cycle_is_an_error_not_a_hang() {
     let e = load_file(&dir.join("a.pbrt")).unwrap_err();
     assert!(e.message.contains("too deep"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn objects_keep_their_shapes_and_instances_their_transforms() {
+    let d = load(
+        r#"WorldBegin
+        Translate 0 0 5
+        ObjectBegin "thing"
+          Material "diffuse"
+          Translate 1 0 0
+          Shape "sphere"
+          AreaLightSource "diffuse"
+          Shape "disk"
+        ObjectEnd
+        Shape "disk"
+        AttributeBegin
+          Translate 0 2 0
+          ObjectInstance "later"
+        AttributeEnd
+        ObjectInstance "thing"
+        ObjectBegin "later" Shape "sphere" ObjectEnd"#,
+    );
+    assert_eq!(d.shapes.len(), 1, "object shapes are not top-level shapes");
+    assert!(
+        d.shapes[0].area_light.is_none(),
+        "ObjectEnd restores the state"
+    );
+    assert_eq!(d.objects.len(), 2);
+    let thing = &d.objects[0];
+    assert_eq!(thing.name, "thing");
+    let tys: Vec<&str> = thing.shapes.iter().map(|s| s.entity.ty.as_str()).collect();
+    assert_eq!(tys, ["sphere", "disk"]);
+    // The shape's own CTM includes everything up to its Shape directive.
+    assert_eq!(
+        thing.shapes[0].object_to_world.point(Vec3::ZERO),
+        Vec3::new(1.0, 0.0, 5.0)
+    );
+    assert!(matches!(thing.shapes[0].material, MaterialRef::Index(0)));
+    // Area lights inside objects are refused with a located warning.
+    assert!(thing.shapes[1].area_light.is_none());
+    let w = d
+        .warnings
+        .iter()
+        .find(|w| {
+            w.message
+                .contains("area lights are not supported in object instances")
+        })
+        .expect("a warning");
+    assert_eq!(w.loc.as_ref().unwrap().line, 8);
+    // Instances: forward references resolve; the CTM at the directive is kept.
+    assert_eq!(d.instances.len(), 2);
+    assert_eq!(d.instances[0].object, 1);
+    assert_eq!(
+        d.instances[0].world_from_object.point(Vec3::ZERO),
+        Vec3::new(0.0, 2.0, 5.0)
+    );
+    assert_eq!(d.instances[1].object, 0);
+    assert_eq!(d.instances[1].loc.line, 15);
+}
+
+#[test]
+fn object_errors_are_located() {
+    for (text, needle, line) in [
+        (
+            "WorldBegin\nObjectInstance \"nope\"",
+            "object `nope` is not defined",
+            2,
+        ),
+        (
+            "WorldBegin\nObjectBegin \"a\"\nObjectBegin \"b\"",
+            "ObjectBegin inside another object",
+            3,
+        ),
+        (
+            "WorldBegin\nObjectBegin \"a\"\nObjectInstance \"a\"",
+            "ObjectInstance inside an object definition",
+            3,
+        ),
+        (
+            "WorldBegin\nObjectBegin \"a\" ObjectEnd\nObjectBegin \"a\"",
+            "object `a` is defined twice",
+            3,
+        ),
+        ("WorldBegin\nObjectEnd", "without a matching begin", 2),
+    ] {
+        let e = load_str(text, "t.pbrt", Path::new(".")).unwrap_err();
+        assert!(e.message.contains(needle), "{text}: {e}");
+        assert_eq!(e.loc.as_ref().unwrap().line, line, "{text}: {e}");
+    }
 }

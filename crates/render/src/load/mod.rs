@@ -102,7 +102,8 @@ pub fn build_scene(
     let materials = materials::build_materials(desc, &mut w)?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
-    let prims = shapes::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
+    let (prims, instances) =
+        shapes::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
     lights::build_lights(desc, &mut lights, &mut w)?;
     if lights.is_empty() {
         w.push(
@@ -110,7 +111,14 @@ pub fn build_scene(
                 .into_warning(),
         );
     }
-    let scene = Scene::new(shapes, prims, materials.materials, lights, camera);
+    let scene = Scene::with_instances(
+        shapes,
+        prims,
+        instances,
+        materials.materials,
+        lights,
+        camera,
+    );
     Ok(LoadedScene {
         scene,
         options,

@@ -5,7 +5,7 @@ use super::spectrum::rgb_param;
 use super::Warnings;
 use crate::geometry::{Disk, Prim, Sphere, TriangleMesh};
 use crate::light::{AreaLight, Light};
-use crate::scene::{PrimInfo, Shapes, NO_LIGHT};
+use crate::scene::{Instance, InstanceSet, PrimInfo, Shapes, NO_LIGHT};
 use lumis_math::{Rgb, Vec2, Vec3, PI};
 use lumis_scene::{Diagnostic, Entity, SceneDesc, ShapeDesc};
 
@@ -15,10 +15,47 @@ pub fn build_shapes(
     shapes: &mut Shapes,
     lights: &mut Vec<Light>,
     w: &mut Warnings,
+) -> Result<(Vec<PrimInfo>, InstanceSet), Diagnostic> {
+    let prims = add_shapes(desc, &desc.shapes, mats, shapes, lights, w)?;
+    // Objects: built once, in the space of their shapes' own transforms
+    // (area lights were already refused by the parser, as pbrt-v4 does).
+    let mut set = InstanceSet::default();
+    for o in &desc.objects {
+        let before = lights.len();
+        let prims = add_shapes(desc, &o.shapes, mats, shapes, lights, w)?;
+        debug_assert_eq!(lights.len(), before, "objects carry no area lights");
+        set.objects.push(prims);
+    }
+    for inst in &desc.instances {
+        if set.objects[inst.object as usize].is_empty() {
+            w.push(Diagnostic::warning(
+                &inst.loc,
+                format!(
+                    "object `{}` has no shapes; this instance adds nothing",
+                    desc.objects[inst.object as usize].name
+                ),
+            ));
+            continue;
+        }
+        set.instances.push(Instance {
+            object: inst.object,
+            world_from_object: inst.world_from_object,
+        });
+    }
+    Ok((prims, set))
+}
+
+fn add_shapes(
+    desc: &SceneDesc,
+    list: &[ShapeDesc],
+    mats: &BuiltMaterials,
+    shapes: &mut Shapes,
+    lights: &mut Vec<Light>,
+    w: &mut Warnings,
 ) -> Result<Vec<PrimInfo>, Diagnostic> {
     // Material indices follow the description's order; named ones resolve here.
     let mut prims = Vec::new();
-    for s in &desc.shapes {
+    for s in list {
         let material = match desc.material(&s.material)? {
             None => mats.default,
             Some(m) => desc

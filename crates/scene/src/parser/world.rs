@@ -1,7 +1,10 @@
 //! Scoping, materials, textures, shapes, lights, includes and unsupported directives.
 
+use super::PendingInstance;
 use super::{Builder, Scope, MAX_INCLUDE_DEPTH};
-use crate::desc::{Entity, LightDesc, MaterialDesc, MaterialRef, ShapeDesc, TextureDesc};
+use crate::desc::{
+    Entity, LightDesc, MaterialDesc, MaterialRef, ObjectDesc, ShapeDesc, TextureDesc,
+};
 use crate::lexer::Token;
 use crate::loc::{Diagnostic, SourceFile};
 use crate::params::ParamSet;
@@ -127,15 +130,26 @@ impl Builder {
             "Shape" => {
                 self.require_world(dir, name)?;
                 let entity = Self::entity(dir, name, args)?;
-                if self.object.is_none() {
-                    self.desc.shapes.push(ShapeDesc {
-                        entity,
-                        object_to_world: self.gs.ctm,
-                        reverse_orientation: self.gs.reverse_orientation,
-                        material: self.gs.material.clone(),
-                        area_light: self.gs.area_light.clone(),
-                        inside_object: None,
-                    });
+                let mut shape = ShapeDesc {
+                    entity,
+                    object_to_world: self.gs.ctm,
+                    reverse_orientation: self.gs.reverse_orientation,
+                    material: self.gs.material.clone(),
+                    area_light: self.gs.area_light.clone(),
+                };
+                match self.object {
+                    None => self.desc.shapes.push(shape),
+                    Some(obj) => {
+                        if let Some(al) = shape.area_light.take() {
+                            let d = Diagnostic::warning(
+                                &shape.entity.loc,
+                                "area lights are not supported in object instances (as in pbrt-v4); this shape does not emit",
+                            )
+                            .with_help(format!("AreaLightSource at {}", al.loc));
+                            self.desc.warnings.push(d);
+                        }
+                        self.desc.objects[obj as usize].shapes.push(shape);
+                    }
                 }
             }
             "AreaLightSource" => {
@@ -158,14 +172,34 @@ impl Builder {
             "Include" | "Import" => self.include(dir, name, args)?,
             "ObjectBegin" => {
                 self.require_world(dir, name)?;
-                let (s, _) = Self::strings(dir, name, args, 1, "ObjectBegin \"name\"")?;
-                self.warn(
-                    &dir.loc,
-                    format!("object instancing is not supported yet; the shapes of object `{}` are ignored", s[0].0),
-                );
+                let (s, rest) = Self::strings(dir, name, args, 1, "ObjectBegin \"name\"")?;
+                Self::no_args(dir, name, rest)?;
+                let (obj_name, loc) = s.into_iter().next().expect("one string");
+                if self.object.is_some() {
+                    return Err(Diagnostic::error(
+                        &dir.loc,
+                        "ObjectBegin inside another object definition",
+                    )
+                    .with_help("close the open object with ObjectEnd first"));
+                }
+                if let Some(&prev) = self.object_names.get(&obj_name) {
+                    let first = &self.desc.objects[prev as usize].loc;
+                    return Err(Diagnostic::error(
+                        &loc,
+                        format!("object `{obj_name}` is defined twice"),
+                    )
+                    .with_help(format!("first defined at {first}")));
+                }
                 self.stack
                     .push((Scope::Object, self.gs.clone(), dir.loc.clone()));
-                self.object = Some(s[0].0.clone());
+                let idx = self.desc.objects.len() as u32;
+                self.object_names.insert(obj_name.clone(), idx);
+                self.desc.objects.push(ObjectDesc {
+                    name: obj_name,
+                    loc,
+                    shapes: Vec::new(),
+                });
+                self.object = Some(idx);
             }
             "ObjectEnd" => {
                 Self::no_args(dir, name, args)?;
@@ -174,10 +208,20 @@ impl Builder {
             }
             "ObjectInstance" => {
                 self.require_world(dir, name)?;
-                self.warn(
-                    &dir.loc,
-                    "object instancing is not supported yet; ObjectInstance ignored",
-                );
+                let (s, rest) = Self::strings(dir, name, args, 1, "ObjectInstance \"name\"")?;
+                Self::no_args(dir, name, rest)?;
+                if self.object.is_some() {
+                    return Err(Diagnostic::error(
+                        &dir.loc,
+                        "ObjectInstance inside an object definition (pbrt-v4 does not nest instances)",
+                    ));
+                }
+                let (obj_name, loc) = s.into_iter().next().expect("one string");
+                self.pending_instances.push(PendingInstance {
+                    name: obj_name,
+                    loc,
+                    world_from_object: self.gs.ctm,
+                });
             }
             "WorldEnd" => self.warn(&dir.loc, "WorldEnd is pbrt-v3 syntax; ignored"),
             "MakeNamedMedium" | "MediumInterface" | "ActiveTransform" | "TransformTimes"

@@ -10,7 +10,7 @@
 use crate::geometry::{offset_ray_origin, Aabb, Prim, Ray};
 use crate::light::shape_sample::sample_area;
 use crate::light::Light;
-use crate::scene::Scene;
+use crate::scene::{transform_box, Scene};
 use lumis_math::sampling::{
     square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf, UNIFORM_SPHERE_PDF,
 };
@@ -25,23 +25,42 @@ pub struct Targets {
 
 impl Targets {
     pub fn from_scene(scene: &Scene) -> Targets {
-        // One box per shape (a whole mesh, a sphere, a disk), in a stable order.
-        let mut boxes: BTreeMap<(u8, u32), Aabb> = BTreeMap::new();
-        for p in &scene.prims {
-            if !scene.materials[p.material as usize].is_specular() {
-                continue;
+        // One box per shape (a whole mesh, a sphere, a disk), in a stable
+        // order; an instanced object's boxes are placed by each instance.
+        let shape_boxes = |prims: &[crate::scene::PrimInfo]| {
+            let mut boxes: BTreeMap<(u8, u32), Aabb> = BTreeMap::new();
+            for p in prims {
+                if !scene.materials[p.material as usize].is_specular() {
+                    continue;
+                }
+                let key = match p.prim {
+                    Prim::Triangle { mesh, .. } => (0, mesh),
+                    Prim::Sphere(i) => (1, i),
+                    Prim::Disk(i) => (2, i),
+                };
+                let b = boxes.entry(key).or_insert(Aabb::EMPTY);
+                *b = b.union(&scene.shapes.bounds(p.prim));
             }
-            let key = match p.prim {
-                Prim::Triangle { mesh, .. } => (0, mesh),
-                Prim::Sphere(i) => (1, i),
-                Prim::Disk(i) => (2, i),
-            };
-            let b = boxes.entry(key).or_insert(Aabb::EMPTY);
-            *b = b.union(&scene.shapes.bounds(p.prim));
+            boxes.into_values().collect::<Vec<Aabb>>()
+        };
+        let mut boxes = shape_boxes(&scene.world.prims);
+        let objects: Vec<Vec<Aabb>> = scene
+            .instances
+            .objects
+            .iter()
+            .map(|o| shape_boxes(&o.prims))
+            .collect();
+        for inst in &scene.instances.instances {
+            let xf = &inst.world_from_object;
+            boxes.extend(
+                objects[inst.object as usize]
+                    .iter()
+                    .map(|b| transform_box(xf, b)),
+            );
         }
         Targets {
             spheres: boxes
-                .values()
+                .iter()
                 .map(|b| b.bounding_sphere())
                 .filter(|s| s.1 > 0.0)
                 .collect(),
