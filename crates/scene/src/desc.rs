@@ -135,7 +135,15 @@ impl SceneDesc {
                         Diagnostic::error(loc, format!("named material `{name}` is not defined"));
                     Err(match crate::loc::suggest(name, &names, 2) {
                         Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                        None => d,
+                        None if names.is_empty() => d.with_help(
+                            "define it first with `MakeNamedMaterial \"name\" \"string type\" ...`",
+                        ),
+                        None => {
+                            let mut names = names;
+                            names.sort_unstable();
+                            names.truncate(12);
+                            d.with_help(format!("named materials defined: {}", names.join(", ")))
+                        }
                     })
                 }
             },

@@ -136,7 +136,10 @@ pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, D
             Scope::Transform => "TransformBegin has no matching TransformEnd",
             Scope::Object => "ObjectBegin has no matching ObjectEnd",
         };
-        b.desc.warnings.push(Diagnostic::warning(&loc, what));
+        b.desc.warnings.push(Diagnostic::warning(
+            &loc,
+            format!("{what}: expected it before the end of the input"),
+        ));
     }
     Ok(b.desc)
 }

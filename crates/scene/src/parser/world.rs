@@ -237,13 +237,14 @@ impl Builder {
         let Some((scope, saved, begin)) = self.stack.pop() else {
             return Err(Diagnostic::error(
                 &dir.loc,
-                format!("`{name}` without a matching begin"),
-            ));
+                format!("`{name}` without a matching begin: no `{want:?}Begin` is open here"),
+            )
+            .with_help(format!("remove it, or add `{want:?}Begin` before it")));
         };
         if scope != want {
             return Err(Diagnostic::error(
                 &dir.loc,
-                format!("`{name}` does not match the {scope:?}Begin at {begin}"),
+                format!("`{name}` does not match the {scope:?}Begin at {begin}: expected `{scope:?}End`"),
             ));
         }
         if scope == Scope::Transform {

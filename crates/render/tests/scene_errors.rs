@@ -1,0 +1,98 @@
+//! The common scene mistakes, through the whole load (parse, then build):
+//! each message says where, what was expected, and the nearest known name.
+
+use lumis_render::load::{load_text, BuildOverrides};
+use lumis_scene::Diagnostic;
+use std::path::Path;
+
+const HEAD: &str = "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\nCamera \"perspective\"\n";
+
+fn load(body: &str) -> Result<Vec<String>, String> {
+    let text = format!("{HEAD}{body}");
+    load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
+        .map(|l| l.warnings.iter().map(Diagnostic::to_string).collect())
+        .map_err(|e| e.to_string())
+}
+
+fn error(body: &str) -> String {
+    match load(body) {
+        Ok(w) => panic!("expected an error, loaded with warnings {w:?}"),
+        Err(e) => e,
+    }
+}
+
+#[test]
+fn misspelled_parameter_warns_with_the_nearest_name() {
+    let w = load("WorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\nMaterial \"diffuse\" \"rgb reflectanse\" [0.5 0.5 0.5]\nShape \"sphere\"\n").unwrap();
+    let w = w
+        .iter()
+        .find(|w| w.contains("reflectanse"))
+        .expect("warning");
+    assert!(
+        w.starts_with("s.pbrt:5:20: warning: unknown parameter"),
+        "{w}"
+    );
+    assert!(w.contains("did you mean `reflectance`?"), "{w}");
+}
+
+#[test]
+fn wrong_parameter_type_says_what_was_expected() {
+    let e = error("WorldBegin\nShape \"sphere\" \"string radius\" \"big\"\n");
+    assert!(e.starts_with("s.pbrt:4:16: error:"), "{e}");
+    assert!(
+        e.contains("`radius`") && e.contains("`float`") && e.contains("`string`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_world_begin_is_explained() {
+    let e = error("");
+    assert!(e.contains("no `WorldBegin`"), "{e}");
+    assert!(
+        e.contains("then `WorldBegin`, then shapes and lights"),
+        "{e}"
+    );
+    // A shape before WorldBegin names the directive that was expected first.
+    let e = error("Shape \"sphere\"\n");
+    assert!(e.starts_with("s.pbrt:3:1: error:"), "{e}");
+    assert!(e.contains("only allowed after WorldBegin"), "{e}");
+}
+
+#[test]
+fn unknown_named_material_suggests_the_nearest_or_lists_the_defined() {
+    let defs = "WorldBegin\nMakeNamedMaterial \"GlassBall\" \"string type\" \"dielectric\"\nMakeNamedMaterial \"Floor\" \"string type\" \"diffuse\"\n";
+    let e = error(&format!(
+        "{defs}NamedMaterial \"GlasBall\"\nShape \"sphere\"\n"
+    ));
+    assert!(e.starts_with("s.pbrt:6:"), "{e}");
+    assert!(
+        e.contains("named material `GlasBall` is not defined"),
+        "{e}"
+    );
+    assert!(e.contains("did you mean `GlassBall`?"), "{e}");
+    let e = error(&format!("{defs}NamedMaterial \"Wall\"\nShape \"sphere\"\n"));
+    assert!(
+        e.contains("named materials defined: Floor, GlassBall"),
+        "{e}"
+    );
+}
+
+#[test]
+fn unbalanced_attribute_blocks_say_what_was_expected() {
+    let e = error("WorldBegin\nAttributeEnd\n");
+    assert!(e.starts_with("s.pbrt:4:1: error:"), "{e}");
+    assert!(e.contains("no `AttributeBegin` is open"), "{e}");
+    let e = error("WorldBegin\nAttributeBegin\nTransformEnd\n");
+    assert!(e.contains("expected `AttributeEnd`"), "{e}");
+    let w = load(
+        "WorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\nAttributeBegin\nShape \"sphere\"\n",
+    )
+    .unwrap();
+    assert!(
+        w.iter().any(|w| w.starts_with(
+            "s.pbrt:5:1: warning: AttributeBegin has no matching AttributeEnd: expected it"
+        )),
+        "{w:?}"
+    );
+}
