@@ -2,6 +2,15 @@
 
 use crate::{safe_sqrt, Vec2, Vec3, INV_2PI, INV_4PI, INV_PI, PI};
 
+mod piecewise;
+mod sphere_maps;
+
+pub use piecewise::{PiecewiseConstant1D, PiecewiseConstant2D};
+pub use sphere_maps::{
+    equal_area_sphere_to_square, equal_area_square_to_sphere, latlong_to_sphere, sphere_to_latlong,
+    wrap_equal_area_pixel,
+};
+
 /// Concentric map of the unit square to the unit disk (Shirley & Chiu).
 pub fn square_to_disk_concentric(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;

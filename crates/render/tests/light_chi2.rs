@@ -10,9 +10,10 @@ use lumis_math::{Frame, Vec3};
 use lumis_render::geometry::Ray;
 use lumis_render::light::Light;
 use lumis_render::load::LoadedScene;
+use support::envmap::{lumpy, write_env};
 use support::*;
 
-const TESTS: usize = 9;
+const TESTS: usize = 12;
 
 fn scene(shape: &str, two_sided: bool) -> LoadedScene {
     let text = format!(
@@ -240,4 +241,69 @@ Shape "sphere" "float radius" [ 0.5 ]
     let (c2, dof) = chi2::pearson(&counts, &expected, 5.0);
     let p = chi2::chi2_sf(c2, dof);
     assert!(p > sidak_alpha(0.01, TESTS), "chi2 {c2} dof {dof} p {p}");
+}
+
+/// Image environment lights: `sample_li` against `pdf_li` (importance by
+/// luminance through the equal-area and lat-long Jacobians, under a rotation
+/// and a reflection), and photon emission directions against the same density.
+#[test]
+fn image_infinite_lights() {
+    let square = write_env("chi2-ea.exr", 24, 24, lumpy(24, 24));
+    let wide = write_env("chi2-ll.exr", 48, 24, lumpy(48, 24));
+    for (path, xf, label) in [
+        (&square, "Rotate 40 1 2 0", "equal-area"),
+        (&wide, "Scale -1 1 1 Rotate 20 0 1 1", "lat-long"),
+    ] {
+        let l = load(
+            &format!(
+                "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n{xf}\nLightSource \"infinite\" \"string filename\" \"{}\"\n",
+                path.display()
+            ),
+            &Default::default(),
+        );
+        let light = &l.scene.lights[0];
+        assert!(matches!(light, Light::Image(_)));
+        let p = Vec3::new(0.3, 0.1, -0.2);
+        // Texel outlines are curves across the bins, as for area lights.
+        let cfg = Chi2Config {
+            samples: 400_000,
+            quad_points: 30,
+            ..Default::default()
+        };
+        let pdf = |wi: Vec3| light.pdf_li(&l.scene.shapes, p, wi, Vec3::ZERO, Vec3::ZERO);
+        let out = chi2::run(
+            &cfg,
+            |u, _| light.sample_li(&l.scene.shapes, p, u).map(|s| s.wi),
+            pdf,
+        );
+        assert!(
+            out.passes(sidak_alpha(0.01, TESTS)),
+            "{label} li: {}",
+            out.report()
+        );
+        assert!(out.sampled_fraction > 0.999, "{label}: {}", out.report());
+        // Emission: the direction of travel is the reverse of an incident one.
+        let out = chi2::run(
+            &cfg,
+            |u, uc| {
+                light
+                    .sample_le(&l.scene.shapes, u, lumis_math::Vec2::new(uc, 0.5))
+                    .map(|s| s.ray.d)
+            },
+            |d| pdf(-d),
+        );
+        assert!(
+            out.passes(sidak_alpha(0.01, TESTS)),
+            "{label} le: {}",
+            out.report()
+        );
+        let s = light
+            .sample_le(
+                &l.scene.shapes,
+                lumis_math::Vec2::new(0.2, 0.7),
+                lumis_math::Vec2::new(0.4, 0.1),
+            )
+            .unwrap();
+        assert!((s.pdf_dir / pdf(-s.ray.d) - 1.0).abs() < 1e-3, "{label}");
+    }
 }

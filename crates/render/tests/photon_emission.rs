@@ -60,3 +60,34 @@ fn distant_and_infinite_lights_emit_their_power() {
     );
     check("infinite", i, 4.0 * (PI as f64).powi(2), 0.02);
 }
+
+/// The textured emitter: photons from an image environment light. A unit
+/// sphere intercepts `pi R² ∫ L dω` whatever the map's shape; `∫ L dω` by an
+/// independent quadrature of the light's radiance. Binomial hit fraction:
+/// a few percent.
+#[test]
+fn image_infinite_light_emits_its_power() {
+    use support::envmap::{lumpy, write_env};
+    for (name, w, h) in [("ph-ea.exr", 32, 32), ("ph-ll.exr", 64, 32)] {
+        let path = write_env(name, w, h, lumpy(w, h));
+        let world = format!(
+            "Rotate 50 1 1 0\nLightSource \"infinite\" \"string filename\" \"{}\"\nIdentity\nShape \"sphere\" \"float radius\" [ 1 ]",
+            path.display()
+        );
+        let text = format!("Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n{world}\n");
+        let l = load(&text, &Default::default());
+        let light = &l.scene.lights[0];
+        let mut rng = lumis_math::Pcg32::new(8, 8);
+        let n = 2_000_000;
+        let mut sum = 0.0f64;
+        for _ in 0..n {
+            let d = lumis_math::sampling::square_to_uniform_sphere(lumis_math::Vec2::new(
+                rng.next_f32(),
+                rng.next_f32(),
+            ));
+            sum += light.le(d).luminance() as f64;
+        }
+        let integral = sum * 4.0 * PI as f64 / n as f64;
+        check(name, first_hit_flux(&world), PI as f64 * integral, 0.03);
+    }
+}

@@ -3,6 +3,7 @@
 
 pub mod area;
 pub mod distant;
+pub mod image_infinite;
 pub mod infinite;
 pub mod point;
 pub mod sampler;
@@ -11,6 +12,7 @@ pub mod spot;
 
 pub use area::AreaLight;
 pub use distant::DistantLight;
+pub use image_infinite::{EnvMapping, ImageInfiniteLight};
 pub use infinite::UniformInfiniteLight;
 pub use point::PointLight;
 pub use sampler::LightSampler;
@@ -72,6 +74,7 @@ pub enum Light {
     Spot(SpotLight),
     Distant(DistantLight),
     Infinite(UniformInfiniteLight),
+    Image(ImageInfiniteLight),
 }
 
 impl Light {
@@ -79,12 +82,16 @@ impl Light {
         match self {
             Light::Distant(l) => l.preprocess(scene_bounds),
             Light::Infinite(l) => l.preprocess(scene_bounds),
+            Light::Image(l) => l.preprocess(scene_bounds),
             _ => {}
         }
     }
 
     pub fn is_infinite(&self) -> bool {
-        matches!(self, Light::Distant(_) | Light::Infinite(_))
+        matches!(
+            self,
+            Light::Distant(_) | Light::Infinite(_) | Light::Image(_)
+        )
     }
 
     /// Point, spot and distant lights: a single position or direction.
@@ -99,6 +106,7 @@ impl Light {
             Light::Spot(l) => l.sample_li(p_ref),
             Light::Distant(l) => l.sample_li(p_ref),
             Light::Infinite(l) => l.sample_li(p_ref, u),
+            Light::Image(l) => l.sample_li(p_ref, u),
         }
     }
 
@@ -115,6 +123,7 @@ impl Light {
         match self {
             Light::Area(l) => l.pdf_li(shapes, p_ref, p_light, n_light),
             Light::Infinite(l) => l.pdf_li(wi),
+            Light::Image(l) => l.pdf_li(wi),
             _ => 0.0,
         }
     }
@@ -131,6 +140,7 @@ impl Light {
     pub fn le(&self, d: Vec3) -> Rgb {
         match self {
             Light::Infinite(l) => l.le(d),
+            Light::Image(l) => l.le(d),
             _ => Rgb::BLACK,
         }
     }
@@ -142,6 +152,7 @@ impl Light {
             Light::Spot(l) => l.sample_le(u1),
             Light::Distant(l) => l.sample_le(u1),
             Light::Infinite(l) => l.sample_le(u1, u2),
+            Light::Image(l) => l.sample_le(u1, u2),
         }
     }
 
@@ -153,6 +164,7 @@ impl Light {
             Light::Spot(l) => l.power(),
             Light::Distant(l) => l.power(),
             Light::Infinite(l) => l.power(),
+            Light::Image(l) => l.power(),
         }
     }
 }

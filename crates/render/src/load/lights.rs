@@ -1,4 +1,5 @@
-//! `LightSource` directives: point, spot, distant, infinite (constant).
+//! `LightSource` directives: point, spot, distant, infinite (constant; with
+//! an image in `envmap.rs`).
 
 use super::spectrum::rgb_param;
 use super::Warnings;
@@ -104,14 +105,7 @@ pub fn build_lights(
             }
             "infinite" => {
                 if p.has("filename") {
-                    p.mark_used("filename");
-                    for q in p.unused() {
-                        q.mark_used();
-                    }
-                    w.push(Diagnostic::warning(
-                        &e.loc,
-                        "image-based infinite lights are not supported yet; light skipped",
-                    ));
+                    lights.push(super::envmap::build_image_light(desc, e, &xf, w)?);
                     continue;
                 }
                 let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;

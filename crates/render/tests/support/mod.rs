@@ -1,6 +1,8 @@
 //! Shared helpers for render tests: load scene text, render, summarise.
 #![allow(dead_code)]
 
+pub mod envmap;
+
 use lumis_math::SamplerKind;
 use lumis_render::film::Film;
 use lumis_render::integrator::{render, RenderOutcome, RenderSettings};

@@ -144,7 +144,7 @@ pub fn aimed_emission(
         }
         Light::Point(p) => emit(p.pos, Vec3::ZERO, &|_| p.intensity, 1.0),
         Light::Spot(s) => emit(s.pos, Vec3::ZERO, &|w| s.i(w), 1.0),
-        Light::Distant(_) | Light::Infinite(_) => return None,
+        Light::Distant(_) | Light::Infinite(_) | Light::Image(_) => return None,
     })
 }
 
@@ -174,6 +174,8 @@ pub fn emitted_flux(
         Light::Infinite(l) => {
             le_lum * PI * l.scene_radius * l.scene_radius / (UNIFORM_SPHERE_PDF * pmf)
         }
+        // `w` is the direction of travel; the map was sampled towards `-w`.
+        Light::Image(l) => le_lum * PI * l.scene_radius * l.scene_radius / (l.pdf_li(-w) * pmf),
         _ => f32::INFINITY,
     }
 }
