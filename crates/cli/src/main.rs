@@ -2,6 +2,7 @@
 
 mod args;
 mod bench;
+mod display;
 mod progress;
 mod resume;
 mod run;

@@ -214,9 +214,27 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     });
     let reporter = Reporter::new(a.quiet);
     install_interrupt_handler();
+    let scale = o.imaging_scale;
+    let scaled = move |film: &lumis_render::film::Film| {
+        let mut d = film.mean_image();
+        if scale != 1.0 {
+            d.iter_mut().for_each(|v| *v *= scale);
+        }
+        d
+    };
+    let mut display = a.display_server.as_ref().map(|addr| {
+        let name = files[0]
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "lumis".into());
+        crate::display::Display::start(addr, &name, o.crop.width(), o.crop.height())
+    });
     let mut after_pass = |st: &RenderState| {
         if let Some(sv) = saver.as_mut() {
             sv.maybe_save(st);
+        }
+        if let Some(d) = display.as_mut() {
+            d.offer(|| scaled(&st.film));
         }
     };
     let out = render_with(
@@ -236,9 +254,9 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             eprintln!("lumis: checkpoint {} at {} spp", sv.path.display(), out.spp);
         }
     }
-    let mut data = out.film.mean_image();
-    if o.imaging_scale != 1.0 {
-        data.iter_mut().for_each(|v| *v *= o.imaging_scale);
+    let data = scaled(&out.film);
+    if let Some(d) = display {
+        d.finish(data.clone());
     }
     let mut img = RgbImage::new(out.film.width(), out.film.height(), data);
     let scene_name = a
