@@ -105,7 +105,8 @@ pub fn tokenize(file: &Arc<SourceFile>) -> Result<Vec<Token>, Diagnostic> {
         } else if c == '"' {
             cur.bump();
             TokenKind::Str(lex_string(&mut cur, &loc)?)
-        } else if is_num_char(c) {
+        } else if is_num_char(c) && !matches!(c, 'e' | 'E') {
+            // A number cannot start with an exponent: `EndTime` is a word.
             while cur.peek().is_some_and(is_num_char) {
                 cur.bump();
             }

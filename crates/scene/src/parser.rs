@@ -1,12 +1,13 @@
 //! pbrt-v4 directives → [`SceneDesc`]: a small state machine over the tokens.
 
+mod upgrade;
 mod world;
 mod xform;
 
 use crate::desc::{Entity, MaterialRef, SceneDesc};
 use crate::lexer::{tokenize, Token, TokenKind};
 use crate::loc::{suggest, Diagnostic, Loc, SourceFile};
-use crate::params::ParamSet;
+use crate::params::{Param, ParamSet};
 use lumis_math::Transform;
 use std::collections::HashMap;
 use std::path::Path;
@@ -69,6 +70,38 @@ pub(crate) struct GraphicsState {
     pub material: MaterialRef,
     pub area_light: Option<Entity>,
     pub reverse_orientation: bool,
+    /// `ActiveTransform`: whether transform directives change the start-time
+    /// and the end-time transform. Only the start-time one is rendered.
+    pub active_start: bool,
+    pub active_end: bool,
+    /// `Attribute "shape"|"light"|"material"|"medium"|"texture"` defaults.
+    pub attrs: Attributes,
+}
+
+/// Parameter defaults set by `Attribute`, by target.
+#[derive(Clone, Default)]
+pub(crate) struct Attributes {
+    pub shape: ParamSet,
+    pub light: ParamSet,
+    pub material: ParamSet,
+    pub medium: ParamSet,
+    pub texture: ParamSet,
+}
+
+/// `e` with every parameter of `defaults` that it does not set itself.
+pub(crate) fn with_defaults(mut e: Entity, defaults: &ParamSet) -> Entity {
+    for p in &defaults.params {
+        if !e.params.has(&p.name) {
+            e.params.push(Param::new(
+                &p.ty,
+                &p.name,
+                p.value.clone(),
+                p.loc.clone(),
+                p.value_locs.clone(),
+            ));
+        }
+    }
+    e
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -89,6 +122,8 @@ pub(crate) struct Builder {
     /// `ObjectInstance`s, resolved at the end (objects may be defined later).
     pending_instances: Vec<PendingInstance>,
     depth: usize,
+    /// Directives already warned about once (media, motion blur).
+    warned_once: Vec<&'static str>,
 }
 
 pub(crate) struct PendingInstance {
@@ -106,6 +141,9 @@ pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, D
             material: MaterialRef::Default,
             area_light: None,
             reverse_orientation: false,
+            active_start: true,
+            active_end: true,
+            attrs: Attributes::default(),
         },
         stack: Vec::new(),
         coord_systems: HashMap::new(),
@@ -113,6 +151,7 @@ pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, D
         object_names: HashMap::new(),
         pending_instances: Vec::new(),
         depth: 0,
+        warned_once: Vec::new(),
     };
     b.run(SourceFile::new(name, text))?;
     for inst in std::mem::take(&mut b.pending_instances) {
@@ -203,6 +242,14 @@ impl Builder {
 
     fn warn(&mut self, loc: &Loc, msg: impl Into<String>) {
         self.desc.warnings.push(Diagnostic::warning(loc, msg));
+    }
+
+    /// A warning given only at the first occurrence of `key` in the scene.
+    fn warn_once(&mut self, key: &'static str, loc: &Loc, msg: impl Into<String>) {
+        if !self.warned_once.contains(&key) {
+            self.warned_once.push(key);
+            self.warn(loc, msg);
+        }
     }
 
     fn in_world(&self) -> bool {
@@ -324,7 +371,8 @@ impl Builder {
         match name {
             "Camera" => {
                 self.require_options(dir, name)?;
-                let entity = Self::entity(dir, name, args)?;
+                let mut entity = Self::entity(dir, name, args)?;
+                upgrade::camera(&mut entity);
                 if self.desc.camera.is_some() {
                     self.warn(&dir.loc, "Camera redefined; the last one is used");
                 }
@@ -337,7 +385,13 @@ impl Builder {
             }
             "Film" | "Sampler" | "Integrator" | "PixelFilter" => {
                 self.require_options(dir, name)?;
-                let e = Self::entity(dir, name, args)?;
+                let mut e = Self::entity(dir, name, args)?;
+                match name {
+                    "Film" => upgrade::film(&mut e),
+                    "Sampler" => upgrade::sampler(&mut e),
+                    "Integrator" => upgrade::integrator(&mut e, &mut self.desc.warnings),
+                    _ => upgrade::filter(&mut e),
+                }
                 let slot = match name {
                     "Film" => &mut self.desc.film,
                     "Sampler" => &mut self.desc.sampler,

@@ -205,12 +205,13 @@ fn unsupported_directives_warn_and_skip_their_arguments() {
         r#"Option "bool disablepixeljitter" true
         ColorSpace "aces2065-1"
         MakeNamedMedium "fog" "string type" "homogeneous" "rgb sigma_a" [1 1 1]
+        MakeNamedMedium "smoke" "string type" "homogeneous"
         TransformTimes 0 1
+        Accelerator "kdtree"
         Camera "perspective"
         WorldBegin
-        ActiveTransform StartTime Translate 1 0 0 ActiveTransform All
         MediumInterface "" "fog"
-        Attribute "shape" "float radius" 2
+        MediumInterface "fog"
         Shape "disk"
         WorldEnd"#,
     );
@@ -220,19 +221,89 @@ fn unsupported_directives_warn_and_skip_their_arguments() {
     for needle in [
         "Option",
         "aces2065-1",
-        "MakeNamedMedium",
-        "TransformTimes",
-        "ActiveTransform",
+        "medium `fog`",
         "MediumInterface",
-        "Attribute \"shape\"",
-        "WorldEnd",
+        "Accelerator",
     ] {
         assert!(
             msgs.iter().any(|m| m.contains(needle)),
             "no warning about {needle}: {msgs:?}"
         );
     }
-    assert!(d.warnings.iter().all(|w| w.loc.is_some()));
+    // Media: one warning per directive kind, at its first occurrence.
+    assert_eq!(msgs.len(), 5, "{msgs:?}");
+    let lines: Vec<u32> = d
+        .warnings
+        .iter()
+        .map(|w| w.loc.as_ref().unwrap().line)
+        .collect();
+    assert_eq!(lines, [1, 2, 3, 6, 9]);
+}
+
+#[test]
+fn active_transform_renders_the_start_time_transform() {
+    let d = load(
+        r#"WorldBegin
+        AttributeBegin
+          ActiveTransform EndTime
+          Translate 5 0 0
+          ActiveTransform StartTime
+          Translate 0 1 0
+          ActiveTransform All
+          Translate 0 0 1
+          Shape "sphere"
+        AttributeEnd
+        Shape "disk""#,
+    );
+    let p = d.shapes[0].object_to_world.point(Vec3::ZERO);
+    assert_eq!(p, Vec3::new(0.0, 1.0, 1.0));
+    assert_eq!(d.shapes[1].object_to_world.point(Vec3::ZERO), Vec3::ZERO);
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    assert!(d.warnings[0].message.contains("motion blur"));
+    assert_eq!(d.warnings[0].loc.as_ref().unwrap().line, 4);
+    let e = load_str("ActiveTransform Sometimes", "t.pbrt", Path::new(".")).unwrap_err();
+    assert!(e.message.contains("StartTime, EndTime or All"), "{e}");
+}
+
+#[test]
+fn attribute_sets_scoped_parameter_defaults() {
+    let d = load(
+        r#"WorldBegin
+        AttributeBegin
+          Attribute "shape" "float radius" 2 "float zmax" 0.5
+          Attribute "light" "float scale" 3
+          Attribute "material" "rgb reflectance" [0.1 0.2 0.3]
+          Material "diffuse"
+          Shape "sphere" "float radius" 4
+          LightSource "point"
+          AreaLightSource "diffuse" "float scale" 5
+          Shape "disk"
+        AttributeEnd
+        Shape "sphere""#,
+    );
+    let get = |ps: &ParamSet, n: &str| ps.get_float(n, -1.0).unwrap();
+    assert_eq!(
+        get(&d.shapes[0].entity.params, "radius"),
+        4.0,
+        "own value wins"
+    );
+    assert_eq!(get(&d.shapes[0].entity.params, "zmax"), 0.5);
+    assert_eq!(get(&d.lights[0].entity.params, "scale"), 3.0);
+    let al = d.shapes[1].area_light.as_ref().unwrap();
+    assert_eq!(get(&al.params, "scale"), 5.0);
+    assert!(d.materials[0].entity.params.has("reflectance"));
+    assert!(
+        !d.shapes[2].entity.params.has("radius"),
+        "scoped by AttributeEnd"
+    );
+    assert!(d.warnings.is_empty(), "{:?}", d.warnings);
+    let e = load_str(
+        "WorldBegin\nAttribute \"camera\" \"float x\" 1",
+        "t",
+        Path::new("."),
+    )
+    .unwrap_err();
+    assert!(e.message.contains("unknown Attribute target"), "{e}");
 }
 
 #[test]
@@ -271,10 +342,7 @@ fn include_is_relative_to_the_top_level_folder() {
     assert!(matches!(d.shapes[1].material, MaterialRef::Index(0)));
     assert_eq!(d.shapes[1].object_to_world.point(Vec3::ZERO), Vec3::Z);
     assert!(d.shapes[0].entity.loc.file.path.ends_with("a.pbrt"));
-    assert!(d
-        .warnings
-        .iter()
-        .any(|w| w.message.contains("Import is treated as Include")));
+    assert!(d.warnings.is_empty(), "{:?}", d.warnings);
 
     // Errors inside an included file point into that file.
     std::fs::write(
@@ -387,4 +455,30 @@ fn object_errors_are_located() {
         assert!(e.message.contains(needle), "{text}: {e}");
         assert_eq!(e.loc.as_ref().unwrap().line, line, "{text}: {e}");
     }
+}
+
+#[test]
+fn import_does_not_leak_graphics_state() {
+    let dir = std::env::temp_dir().join(format!("lumis-scene-imp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("part.pbrt"),
+        "Translate 0 0 3\nMaterial \"conductor\"\nShape \"sphere\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("main.pbrt"),
+        "WorldBegin\nMaterial \"diffuse\"\nImport \"part.pbrt\"\nShape \"disk\"\nInclude \"part.pbrt\"\nShape \"disk\"\n",
+    )
+    .unwrap();
+    let d = load_file(&dir.join("main.pbrt")).unwrap();
+    let z: Vec<f32> = d
+        .shapes
+        .iter()
+        .map(|s| s.object_to_world.point(Vec3::ZERO).z)
+        .collect();
+    assert_eq!(z, [3.0, 0.0, 3.0, 3.0]);
+    assert!(matches!(d.shapes[1].material, MaterialRef::Index(0)));
+    assert!(matches!(d.shapes[3].material, MaterialRef::Index(2)));
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,7 +1,7 @@
 //! Scoping, materials, textures, shapes, lights, includes and unsupported directives.
 
 use super::PendingInstance;
-use super::{Builder, Scope, MAX_INCLUDE_DEPTH};
+use super::{upgrade, with_defaults, Builder, Scope, MAX_INCLUDE_DEPTH};
 use crate::desc::{
     Entity, LightDesc, MaterialDesc, MaterialRef, ObjectDesc, ShapeDesc, TextureDesc,
 };
@@ -39,15 +39,32 @@ impl Builder {
             "Attribute" => {
                 let (s, rest) =
                     Self::strings(dir, name, args, 1, "Attribute \"shape\" parameters...")?;
-                ParamSet::parse(rest)?;
-                self.warn(
-                    &dir.loc,
-                    format!("`Attribute \"{}\"` is not supported yet; ignored", s[0].0),
-                );
+                let params = ParamSet::parse(rest)?;
+                let a = &mut self.gs.attrs;
+                let set = match s[0].0.as_str() {
+                    "shape" => &mut a.shape,
+                    "light" => &mut a.light,
+                    "material" => &mut a.material,
+                    "medium" => &mut a.medium,
+                    "texture" => &mut a.texture,
+                    other => {
+                        return Err(Diagnostic::error(
+                            &s[0].1,
+                            format!("unknown Attribute target \"{other}\""),
+                        )
+                        .with_help("targets are \"shape\", \"light\", \"material\", \"medium\" and \"texture\""))
+                    }
+                };
+                for p in params.params {
+                    set.params.retain(|q| q.name != p.name);
+                    set.params.push(p);
+                }
             }
             "Material" => {
                 self.require_world(dir, name)?;
-                let entity = Self::entity(dir, name, args)?;
+                let mut entity =
+                    with_defaults(Self::entity(dir, name, args)?, &self.gs.attrs.material);
+                upgrade::material(&mut entity, &mut self.desc.warnings)?;
                 self.desc
                     .materials
                     .push(MaterialDesc { name: None, entity });
@@ -72,7 +89,8 @@ impl Builder {
                         format!("named material `{mat_name}` redefined; the last one is used"),
                     );
                 }
-                let entity = Entity { ty, params, loc };
+                let mut entity = with_defaults(Entity { ty, params, loc }, &self.gs.attrs.material);
+                upgrade::material(&mut entity, &mut self.desc.warnings)?;
                 self.desc.materials.push(MaterialDesc {
                     name: Some(mat_name.clone()),
                     entity,
@@ -115,11 +133,15 @@ impl Builder {
                         format!("{kind} texture `{tex_name}` redefined; the last one is used"),
                     );
                 }
-                let entity = Entity {
-                    ty: s[2].0.clone(),
-                    params: ParamSet::parse(rest)?,
-                    loc: s[2].1.clone(),
-                };
+                let mut entity = with_defaults(
+                    Entity {
+                        ty: s[2].0.clone(),
+                        params: ParamSet::parse(rest)?,
+                        loc: s[2].1.clone(),
+                    },
+                    &self.gs.attrs.texture,
+                );
+                upgrade::texture(&mut entity, kind)?;
                 self.desc.textures.push(TextureDesc {
                     name: tex_name,
                     kind: kind.to_string(),
@@ -129,7 +151,9 @@ impl Builder {
             }
             "Shape" => {
                 self.require_world(dir, name)?;
-                let entity = Self::entity(dir, name, args)?;
+                let mut entity =
+                    with_defaults(Self::entity(dir, name, args)?, &self.gs.attrs.shape);
+                upgrade::shape(&mut entity);
                 let mut shape = ShapeDesc {
                     entity,
                     object_to_world: self.gs.ctm,
@@ -154,11 +178,15 @@ impl Builder {
             }
             "AreaLightSource" => {
                 self.require_world(dir, name)?;
-                self.gs.area_light = Some(Self::entity(dir, name, args)?);
+                let mut e = with_defaults(Self::entity(dir, name, args)?, &self.gs.attrs.light);
+                upgrade::light(&mut e, true)?;
+                self.gs.area_light = Some(e);
             }
             "LightSource" => {
                 self.require_world(dir, name)?;
-                let entity = Self::entity(dir, name, args)?;
+                let mut entity =
+                    with_defaults(Self::entity(dir, name, args)?, &self.gs.attrs.light);
+                upgrade::light(&mut entity, false)?;
                 self.desc.lights.push(LightDesc {
                     entity,
                     light_to_world: self.gs.ctm,
@@ -223,10 +251,40 @@ impl Builder {
                     world_from_object: self.gs.ctm,
                 });
             }
-            "WorldEnd" => self.warn(&dir.loc, "WorldEnd is pbrt-v3 syntax; ignored"),
-            "MakeNamedMedium" | "MediumInterface" | "ActiveTransform" | "TransformTimes"
-            | "Accelerator" => {
-                self.warn(&dir.loc, format!("`{name}` is not supported yet; ignored"))
+            "WorldEnd" => Self::no_args(dir, name, args)?, // pbrt-v3's end of scene
+            "MakeNamedMedium" => {
+                let usage =
+                    "MakeNamedMedium \"name\" \"string type\" \"homogeneous\" parameters...";
+                let (s, rest) = Self::strings(dir, name, args, 1, usage)?;
+                ParamSet::parse(rest)?;
+                self.warn_once(
+                    "media",
+                    &s[0].1,
+                    format!("participating media are not rendered yet; medium `{}` (and any other) is ignored", s[0].0),
+                );
+            }
+            "MediumInterface" => {
+                let n = args.len().min(2);
+                let (_, rest) = Self::strings(
+                    dir,
+                    name,
+                    args,
+                    n.max(1),
+                    "MediumInterface \"inside\" [\"outside\"]",
+                )?;
+                Self::no_args(dir, name, rest)?;
+                self.warn_once(
+                    "interface",
+                    &dir.loc,
+                    "participating media are not rendered yet; MediumInterface is ignored (here and below)",
+                );
+            }
+            "Accelerator" => {
+                Self::entity(dir, name, args)?;
+                self.warn(
+                    &dir.loc,
+                    "`Accelerator` is ignored: lumis always uses its own BVH",
+                );
             }
             _ => return Err(Self::unknown_directive(dir, name)),
         }
@@ -259,9 +317,7 @@ impl Builder {
         let (s, rest) = Self::strings(dir, name, args, 1, &format!("{name} \"file.pbrt\""))?;
         Self::no_args(dir, name, rest)?;
         let (file, loc) = &s[0];
-        if name == "Import" {
-            self.warn(&dir.loc, "Import is treated as Include");
-        }
+
         if file.ends_with(".gz") {
             return Err(Diagnostic::error(
                 loc,
@@ -282,9 +338,15 @@ impl Builder {
             )
             .with_help("included paths are relative to the top-level scene file's folder")
         })?;
+        // Import (pbrt-v4): like Include, but changes to the graphics state
+        // made in the imported file do not carry over.
+        let saved = (name == "Import").then(|| self.gs.clone());
         self.depth += 1;
         let result = self.run(SourceFile::new(path.display().to_string(), text));
         self.depth -= 1;
+        if let Some(gs) = saved {
+            self.gs = gs;
+        }
         result
     }
 }

@@ -1,7 +1,7 @@
 //! Matrices for the transform directives (pbrt conventions, left-handed look-at).
 
 use super::Builder;
-use crate::lexer::Token;
+use crate::lexer::{Token, TokenKind};
 use crate::loc::Diagnostic;
 use lumis_math::{Mat4, Transform, Vec3, Vec4};
 
@@ -13,7 +13,41 @@ impl Builder {
         name: &str,
         args: &[Token],
     ) -> Result<bool, Diagnostic> {
+        let before = self.gs.ctm;
         match name {
+            "ActiveTransform" => {
+                let which = match args.first().map(|t| &t.kind) {
+                    Some(TokenKind::Ident(w)) if args.len() == 1 => w.as_str(),
+                    _ => {
+                        return Err(Diagnostic::error(
+                            &dir.loc,
+                            "ActiveTransform expects StartTime, EndTime or All",
+                        ))
+                    }
+                };
+                let (start, end) = match which {
+                    "StartTime" => (true, false),
+                    "EndTime" => (false, true),
+                    "All" => (true, true),
+                    other => {
+                        return Err(Diagnostic::error(
+                            &args[0].loc,
+                            format!(
+                            "ActiveTransform expects StartTime, EndTime or All, found `{other}`"
+                        ),
+                        ))
+                    }
+                };
+                self.gs.active_start = start;
+                self.gs.active_end = end;
+                return Ok(true);
+            }
+            "TransformTimes" => {
+                // Shutter times of the two transforms: without motion blur they
+                // change nothing (a differing end transform is warned about).
+                Self::numbers(dir, name, args, 2)?;
+                return Ok(true);
+            }
             "Identity" => {
                 Self::no_args(dir, name, args)?;
                 self.gs.ctm = Transform::IDENTITY;
@@ -56,6 +90,7 @@ impl Builder {
                 let (s, rest) = Self::strings(dir, name, args, 1, "CoordinateSystem \"name\"")?;
                 Self::no_args(dir, name, rest)?;
                 self.coord_systems.insert(s[0].0.clone(), self.gs.ctm);
+                return Ok(true);
             }
             "CoordSysTransform" => {
                 let (s, rest) = Self::strings(dir, name, args, 1, "CoordSysTransform \"name\"")?;
@@ -66,6 +101,16 @@ impl Builder {
                 }
             }
             _ => return Ok(false),
+        }
+        if !(self.gs.active_start && self.gs.active_end) {
+            self.warn_once(
+                "motion",
+                &dir.loc,
+                "motion blur is not supported: start and end transforms differ (ActiveTransform); rendering the start-time transform",
+            );
+            if !self.gs.active_start {
+                self.gs.ctm = before;
+            }
         }
         Ok(true)
     }
