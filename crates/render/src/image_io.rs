@@ -187,30 +187,66 @@ fn write_png(path: &Path, img: &RgbImage, exposure: f32) -> Result<(), ImageErro
 
 /// Reads EXR, PFM or PNG (8-bit sRGB decoded to linear).
 pub fn read_image(path: &Path) -> Result<RgbImage, ImageError> {
-    match ImageFormat::from_path(path)? {
-        ImageFormat::Exr => read_exr(path),
-        ImageFormat::Pfm => read_pfm(path),
-        ImageFormat::Png => read_png(path),
+    let format = ImageFormat::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|e| io_err(path, e))?;
+    decode_image(&bytes, format, &path.display().to_string())
+}
+
+/// Decodes an image held in memory; `name` labels errors. Sizes in headers
+/// are checked against the data before anything is allocated.
+pub fn decode_image(bytes: &[u8], format: ImageFormat, name: &str) -> Result<RgbImage, ImageError> {
+    match format {
+        ImageFormat::Exr => read_exr(bytes, name),
+        ImageFormat::Pfm => read_pfm(bytes, name),
+        ImageFormat::Png => read_png(bytes, name),
     }
 }
 
-fn read_exr(path: &Path) -> Result<RgbImage, ImageError> {
+/// Most pixels an image file may declare: the film's limit, and at most
+/// 4096 per byte of file beyond the first million (generous for compressed
+/// flat images, small enough that a tiny hostile header cannot claim gigabytes).
+fn pixel_limit(file_len: usize) -> u64 {
+    (crate::load::options::MAX_PIXELS).min((1u64 << 20) + 4096 * file_len as u64)
+}
+
+fn read_exr(bytes: &[u8], name: &str) -> Result<RgbImage, ImageError> {
     use exr::meta::attribute::AttributeValue;
-    let img = exr::prelude::read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![0f32; res.width() * res.height() * 3]),
-        |(w, buf): &mut (usize, Vec<f32>), p, (r, g, b, _a): (f32, f32, f32, f32)| {
-            let i = 3 * (p.y() * *w + p.x());
-            buf[i] = r;
-            buf[i + 1] = g;
-            buf[i + 2] = b;
-        },
-    )
-    .map_err(|e| ImageError::Format {
-        path: path.display().to_string(),
+    use exr::prelude::*;
+    let bad = |msg: String| ImageError::Format {
+        path: name.to_string(),
         format: "EXR",
-        msg: e.to_string(),
-    })?;
+        msg,
+    };
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
+        .map_err(|e| bad(e.to_string()))?;
+    let limit = pixel_limit(bytes.len());
+    for h in &meta.headers {
+        let px = h.layer_size.width() as u64 * h.layer_size.height() as u64;
+        if px > limit {
+            return Err(bad(format!(
+                "declares {}x{} pixels, more than {limit} for a file of {} bytes",
+                h.layer_size.width(),
+                h.layer_size.height(),
+                bytes.len()
+            )));
+        }
+    }
+    let img = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |res, _| (res.width(), vec![0f32; res.width() * res.height() * 3]),
+            |(w, buf): &mut (usize, Vec<f32>), p, (r, g, b, _a): (f32, f32, f32, f32)| {
+                let i = 3 * (p.y() * *w + p.x());
+                buf[i] = r;
+                buf[i + 1] = g;
+                buf[i + 2] = b;
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::Cursor::new(bytes))
+        .map_err(|e| bad(e.to_string()))?;
     let layer = &img.layer_data;
     let size = layer.size;
     let mut metadata = Vec::new();
@@ -232,10 +268,9 @@ fn read_exr(path: &Path) -> Result<RgbImage, ImageError> {
     })
 }
 
-fn read_pfm(path: &Path) -> Result<RgbImage, ImageError> {
-    let bytes = std::fs::read(path).map_err(|e| io_err(path, e))?;
+fn read_pfm(bytes: &[u8], name: &str) -> Result<RgbImage, ImageError> {
     let bad = |msg: &str| ImageError::Format {
-        path: path.display().to_string(),
+        path: name.to_string(),
         format: "PFM",
         msg: msg.to_string(),
     };
@@ -296,12 +331,16 @@ fn read_pfm(path: &Path) -> Result<RgbImage, ImageError> {
     })
 }
 
-fn read_png(path: &Path) -> Result<RgbImage, ImageError> {
-    let img = image::open(path).map_err(|e| ImageError::Format {
-        path: path.display().to_string(),
+fn read_png(bytes: &[u8], name: &str) -> Result<RgbImage, ImageError> {
+    let bad = |e: image::ImageError| ImageError::Format {
+        path: name.to_string(),
         format: "PNG",
         msg: e.to_string(),
-    })?;
+    };
+    // The decoder's default limits (512 MiB per allocation) apply.
+    let img = image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png)
+        .decode()
+        .map_err(bad)?;
     let rgb = img.to_rgb8();
     let data = rgb
         .as_raw()
