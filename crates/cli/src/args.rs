@@ -116,7 +116,7 @@ pub struct RenderArgs {
     /// Print no progress, only warnings, errors and the summary.
     #[arg(short, long)]
     pub quiet: bool,
-    /// More detail: phase timings and settings (-v), and per-pass lines (-vv).
+    /// More detail: phase timings, scene size and settings.
     #[arg(short, long, action = clap::ArgAction::Count)]
     pub verbose: u8,
     /// Print statistics at the end: rays by kind, photons, memory, time by phase.

@@ -6,6 +6,7 @@ mod display;
 mod progress;
 mod resume;
 mod run;
+mod stats;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -8,11 +8,11 @@ use lumis_render::checkpoint::Checkpoint;
 use lumis_render::image_io::{write_image, ImageFormat, RgbImage};
 use lumis_render::integrator::{render_with, BadSample, RenderHooks, RenderSettings, RenderState};
 use lumis_render::load::photon::PhotonOverrides;
-use lumis_render::load::{load_path, load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
+use lumis_render::load::{build_scene, BuildOverrides, LoadedScene, DEFAULT_SCENE};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Exit status of a render stopped by SIGINT/SIGTERM after writing its image (128 + SIGINT).
 pub const EXIT_INTERRUPTED: u8 = 130;
@@ -131,16 +131,18 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         Some(p) => std::fs::read(p).unwrap_or_default(),
         None => DEFAULT_SCENE.as_bytes().to_vec(),
     };
-    let loaded: LoadedScene = match &a.scene {
-        Some(p) => load_path(p, &ov),
-        None => load_text(
-            DEFAULT_SCENE,
-            "<built-in default scene>",
-            Path::new("."),
-            &ov,
-        ),
+    let mut phases = crate::stats::Phases::default();
+    let t = Instant::now();
+    let desc = match &a.scene {
+        Some(p) => lumis_scene::load_file(p),
+        None => lumis_scene::load_str(DEFAULT_SCENE, "<built-in default scene>", Path::new(".")),
     }
     .map_err(|d| anyhow::anyhow!("{d}"))?;
+    phases.parse = t.elapsed();
+    let t = Instant::now();
+    let loaded: LoadedScene = build_scene(&desc, &ov).map_err(|d| anyhow::anyhow!("{d}"))?;
+    phases.build = t.elapsed();
+    drop(desc);
     for w in &loaded.warnings {
         eprintln!("{w}");
     }
@@ -164,6 +166,42 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         inject_nan: a.inject_nan,
         ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
     };
+    if a.verbose > 0 {
+        let sc = &loaded.scene;
+        let tris: usize = sc.shapes.meshes.iter().map(|m| m.indices.len() / 3).sum();
+        eprintln!(
+            "lumis: parsed in {:.3} s; built in {:.3} s: {} triangles in {} meshes, {} spheres, {} disks, {} lights, {:.1} MiB of geometry and BVH",
+            phases.parse.as_secs_f64(),
+            phases.build.as_secs_f64(),
+            tris,
+            sc.shapes.meshes.len(),
+            sc.shapes.spheres.len(),
+            sc.shapes.disks.len(),
+            sc.lights.len(),
+            sc.geometry_memory_bytes() as f64 / (1u64 << 20) as f64
+        );
+        eprintln!(
+            "lumis: {} {}x{} (crop {}x{}), {} spp, seed {}, sampler {:?}, maxdepth {}, threads {}",
+            o.integrator.kind.name(),
+            o.resolution.0,
+            o.resolution.1,
+            o.crop.width(),
+            o.crop.height(),
+            if settings.spp == 0 {
+                "time-limited".to_string()
+            } else {
+                settings.spp.to_string()
+            },
+            settings.seed,
+            settings.sampler,
+            o.integrator.max_depth,
+            if settings.threads == 0 {
+                rayon::current_num_threads()
+            } else {
+                settings.threads
+            },
+        );
+    }
     let hash = crate::resume::scene_hash(&scene_text, o, &settings);
     let mut resume_state = None;
     let mut command: Vec<String> = std::env::args().skip(1).collect();
@@ -281,9 +319,11 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             format!("pixel {},{} sample {}", b.x, b.y, b.sample),
         ));
     }
+    let t = Instant::now();
     for f in &files {
         write_image(f, &img, a.exposure).with_context(|| format!("writing {}", f.display()))?;
     }
+    phases.write = t.elapsed();
     let secs = out.elapsed.as_secs_f64();
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
     eprintln!(
@@ -306,6 +346,9 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             ps.radiance_time.as_secs_f64(),
             ps.memory_bytes as f64 / (1u64 << 20) as f64
         );
+    }
+    if a.stats {
+        crate::stats::print(&loaded, &out, &phases);
     }
     if out.bad_samples > 0 {
         let b = out.first_bad.unwrap_or(BadSample {

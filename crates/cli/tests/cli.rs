@@ -393,3 +393,89 @@ fn nan_samples_are_dropped_counted_and_located_in_summary_and_exr() {
     );
     assert!(img.data.iter().all(|v| v.is_finite()));
 }
+
+/// The number after `label ` on the stats line starting with `line`.
+fn stat(text: &str, line: &str, label: &str) -> f64 {
+    let l = text
+        .lines()
+        .find(|l| l.trim_start().starts_with(line))
+        .unwrap_or_else(|| panic!("no `{line}` line in {text}"));
+    let rest = &l[l
+        .find(&format!("{label} "))
+        .unwrap_or_else(|| panic!("no {label} in {l}"))
+        + label.len()
+        + 1..];
+    rest.split([' ', ',', ';'])
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap_or_else(|_| panic!("bad number after {label} in {l}"))
+}
+
+#[test]
+fn stats_report_rays_photons_memory_and_phases() {
+    let d = temp_dir("stats");
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--integrator",
+            "path",
+            "--resolution",
+            "24x16",
+            "--spp",
+            "3",
+            "--stats",
+            "-q",
+            "-o",
+            "s.exr",
+        ],
+    );
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    // One camera ray per sample; light sampling traces shadow rays.
+    assert_eq!(stat(&e, "rays", "camera"), (24 * 16 * 3) as f64, "{e}");
+    assert!(stat(&e, "rays", "shadow") > 0.0 && stat(&e, "rays", "indirect") > 0.0);
+    assert_eq!(stat(&e, "rays", "photon"), 0.0);
+    assert_eq!(stat(&e, "memory", "film"), (24 * 16 * 56) as f64 / 1024.0);
+    assert!(stat(&e, "memory", "BVH") > 0.0);
+    for phase in ["parse", "build", "rendering", "writing"] {
+        assert!(stat(&e, "time", phase) >= 0.0);
+    }
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--integrator",
+            "photon",
+            "--resolution",
+            "24x16",
+            "--spp",
+            "1",
+            "--stats",
+            "-v",
+            "--photons",
+            "4000",
+            "--caustic-photons",
+            "4000",
+            "-o",
+            "p.exr",
+        ],
+    );
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(stat(&e, "rays", "photon") >= 8000.0, "{e}");
+    assert!(stat(&e, "rays", "gather") > 0.0, "{e}");
+    assert!(stat(&e, "photons", "map") > 0.0, "{e}");
+    assert!(stat(&e, "memory", "maps") > 0.0, "{e}");
+    assert!(stat(&e, "time", "pass") > 0.0, "{e}");
+    // -v: phase timings and settings before the render.
+    assert!(
+        e.contains("lumis: parsed in") && e.contains("triangles in"),
+        "{e}"
+    );
+    assert!(
+        e.contains("photon 24x16 (crop 24x16), 1 spp, seed 0"),
+        "{e}"
+    );
+}

@@ -14,12 +14,16 @@ pub fn li(
     mut ray: Ray,
     sampler: &mut Sampler,
     max_depth: u32,
-    rays: &mut u64,
+    rays: &mut super::RayCounts,
 ) -> Rgb {
     let mut l = Rgb::BLACK;
     let mut beta = Rgb::WHITE;
-    for _ in 0..=max_depth {
-        *rays += 1;
+    for d in 0..=max_depth {
+        if d == 0 {
+            rays.camera += 1;
+        } else {
+            rays.indirect += 1;
+        }
         let Some(hit) = scene.intersect(&ray) else {
             return l + beta * escaped_mis(scene, &ray, ray.o, 0.0, true);
         };
@@ -46,7 +50,7 @@ pub fn li(
         }
         let weight = beta * bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
         let next = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
-        *rays += 1;
+        rays.indirect += 1;
         match scene.intersect(&next) {
             Some(h2) => l += weight * emitted_mis(scene, &h2, &next, hit.geom.p, bs.pdf, false),
             None => l += weight * escaped_mis(scene, &next, hit.geom.p, bs.pdf, false),

@@ -16,7 +16,7 @@ pub fn sample_direct(
     bsdf: &SurfaceBsdf,
     wo: Vec3,
     sampler: &mut Sampler,
-    rays: &mut u64,
+    rays: &mut super::RayCounts,
 ) -> Rgb {
     sample_direct_n(scene, hit, bsdf, wo, 1.0, sampler, rays)
 }
@@ -30,7 +30,7 @@ pub fn sample_direct_n(
     wo: Vec3,
     n_bsdf: f32,
     sampler: &mut Sampler,
-    rays: &mut u64,
+    rays: &mut super::RayCounts,
 ) -> Rgb {
     let ul = sampler.get_1d();
     let u = sampler.get_2d();
@@ -49,7 +49,7 @@ pub fn sample_direct_n(
     if f.is_black() {
         return Rgb::BLACK;
     }
-    *rays += 1;
+    rays.shadow += 1;
     let shadow = if ls.infinite {
         let mut r = spawn_ray(p, hit.geom.ng, ls.wi);
         r.tmax = f32::INFINITY;

@@ -20,6 +20,32 @@ use crate::geometry::Ray;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler};
 
+/// Rays traced by kind, counted per thread and merged after each pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// Camera rays: one per sample.
+    pub camera: u64,
+    /// Continuations after the first hit (specular chains, path bounces,
+    /// `direct`'s BSDF-sampled rays).
+    pub indirect: u64,
+    /// Shadow rays of light sampling.
+    pub shadow: u64,
+    /// Final-gather rays (`photon`).
+    pub gather: u64,
+}
+
+impl RayCounts {
+    pub fn total(&self) -> u64 {
+        self.camera + self.indirect + self.shadow + self.gather
+    }
+    pub fn add(&mut self, o: &RayCounts) {
+        self.camera += o.camera;
+        self.indirect += o.indirect;
+        self.shadow += o.shadow;
+        self.gather += o.gather;
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IntegratorKind {
     /// Unbiased path tracing with NEE and MIS: the reference.
@@ -71,7 +97,7 @@ impl Integrator {
         photon: Option<&photon::gather::PhotonCtx>,
         ray: Ray,
         sampler: &mut Sampler,
-        rays: &mut u64,
+        rays: &mut RayCounts,
     ) -> Rgb {
         match (self.kind, photon) {
             (IntegratorKind::Photon, Some(ctx)) => photon::gather::li(ctx, ray, sampler, rays),

@@ -13,7 +13,7 @@ pub fn li(
     mut ray: Ray,
     sampler: &mut Sampler,
     max_depth: u32,
-    rays: &mut u64,
+    rays: &mut super::RayCounts,
 ) -> Rgb {
     let mut l = Rgb::BLACK;
     let mut beta = Rgb::WHITE;
@@ -23,7 +23,11 @@ pub fn li(
     let mut pdf_prev = 0.0f32;
     let mut depth = 0u32;
     loop {
-        *rays += 1;
+        if depth == 0 {
+            rays.camera += 1;
+        } else {
+            rays.indirect += 1;
+        }
         let Some(hit) = scene.intersect(&ray) else {
             l += beta * escaped_mis(scene, &ray, p_prev, pdf_prev, depth == 0 || specular_bounce);
             break;

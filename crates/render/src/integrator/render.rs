@@ -7,7 +7,7 @@
 
 use super::photon::gather::PhotonCtx;
 use super::photon::PhotonMaps;
-use super::{Integrator, IntegratorKind};
+use super::{Integrator, IntegratorKind, RayCounts};
 use crate::film::{Film, Filter, PixelBounds};
 use crate::scene::Scene;
 use lumis_math::{Sampler, SamplerKind, Vec2};
@@ -114,6 +114,9 @@ pub struct RenderOutcome {
     pub elapsed: Duration,
     /// Rays traced by this run.
     pub rays: u64,
+    /// The same by kind (camera, indirect, shadow, gather; photons are counted
+    /// in the scene's counters).
+    pub ray_counts: RayCounts,
     /// Samples dropped because they were NaN or infinite (over all runs).
     pub bad_samples: u64,
     pub first_bad: Option<BadSample>,
@@ -205,7 +208,7 @@ fn render_in_pool(
     let width = state.film.width() as usize;
     let bad = AtomicU64::new(0);
     let first_bad = Mutex::new(state.first_bad);
-    let rays = AtomicU64::new(0);
+    let rays = Mutex::new(RayCounts::default());
     let per_pass = settings.spp_per_pass.max(1);
     let mut interrupted = false;
     let limit = if settings.spp == 0 {
@@ -219,7 +222,7 @@ fn render_in_pool(
         .then(|| PhotonMaps::build(scene, &integrator.photon, settings.seed));
     let mut pass_time_sum = Duration::ZERO;
     let mut samples_here = 0u32;
-    let mut rays_here = 0u64;
+    let mut rays_here = RayCounts::default();
     while state.spp_done < limit {
         let ctx = maps.as_ref().map(|m| PhotonCtx {
             scene,
@@ -242,7 +245,7 @@ fn render_in_pool(
             .for_each(|(row, pixels)| {
                 let py = settings.crop.y0 + row as u32;
                 let mut sampler = Sampler::new(settings.sampler, settings.seed);
-                let mut local_rays = 0u64;
+                let mut local_rays = RayCounts::default();
                 let mut local_bad = 0u64;
                 let mut local_first: Option<BadSample> = None;
                 for (col, pixel) in pixels.iter_mut().enumerate() {
@@ -277,7 +280,7 @@ fn render_in_pool(
                         }
                     }
                 }
-                rays.fetch_add(local_rays, Ordering::Relaxed);
+                rays.lock().unwrap().add(&local_rays);
                 if local_bad > 0 {
                     bad.fetch_add(local_bad, Ordering::Relaxed);
                     let mut f = first_bad.lock().unwrap();
@@ -289,9 +292,9 @@ fn render_in_pool(
             });
         state.spp_done += n;
         samples_here += n;
-        let pass_rays = rays.swap(0, Ordering::Relaxed);
-        rays_here += pass_rays;
-        state.rays += pass_rays;
+        let pass_rays = std::mem::take(&mut *rays.lock().unwrap());
+        rays_here.add(&pass_rays);
+        state.rays += pass_rays.total();
         state.bad_samples += bad.swap(0, Ordering::Relaxed);
         state.first_bad = *first_bad.lock().unwrap();
         let elapsed = start.elapsed();
@@ -329,11 +332,12 @@ fn render_in_pool(
             break;
         }
     }
-    scene.count_rays(rays_here);
+    scene.count_rays(rays_here.total());
     RenderOutcome {
         spp: state.spp_done,
         elapsed: start.elapsed(),
-        rays: rays_here,
+        rays: rays_here.total(),
+        ray_counts: rays_here,
         bad_samples: state.bad_samples,
         first_bad: state.first_bad,
         interrupted,

@@ -94,6 +94,8 @@ impl Hit {
 #[derive(Default)]
 pub struct RayCounters {
     pub rays: AtomicU64,
+    /// Rays traced by photons (included in `rays`).
+    pub photon_rays: AtomicU64,
 }
 
 pub struct Scene {

@@ -34,12 +34,21 @@ const GLOBAL_RADIUS_SCALE: f32 = 5.0;
 const CONE_K: f32 = 1.1;
 
 /// Radiance along a camera ray.
-pub fn li(ctx: &PhotonCtx, mut ray: Ray, sampler: &mut Sampler, rays: &mut u64) -> Rgb {
+pub fn li(
+    ctx: &PhotonCtx,
+    mut ray: Ray,
+    sampler: &mut Sampler,
+    rays: &mut crate::integrator::RayCounts,
+) -> Rgb {
     let scene = ctx.scene;
     let mut l = Rgb::BLACK;
     let mut beta = Rgb::WHITE;
     for depth in 0..=ctx.s.max_depth {
-        *rays += 1;
+        if depth == 0 {
+            rays.camera += 1;
+        } else {
+            rays.indirect += 1;
+        }
         let Some(hit) = scene.intersect(&ray) else {
             return l + beta * escaped_mis_n(scene, &ray, ray.o, 0.0, 0.0, true);
         };
@@ -93,7 +102,7 @@ pub fn shade(
     m2: u32,
     depth: u32,
     sampler: &mut Sampler,
-    rays: &mut u64,
+    rays: &mut crate::integrator::RayCounts,
 ) -> Rgb {
     let scene = ctx.scene;
     let mut l = sample_direct_n(scene, x, bsdf, wo, m2 as f32, sampler, rays);
@@ -153,7 +162,7 @@ fn trace_gather(
     g: &Gather,
     depth: u32,
     sampler: &mut Sampler,
-    rays: &mut u64,
+    rays: &mut crate::integrator::RayCounts,
 ) -> Rgb {
     let scene = ctx.scene;
     let s = ctx.s;
@@ -161,7 +170,7 @@ fn trace_gather(
     let mut t = Rgb::WHITE;
     let mut specular = false;
     for d in depth + 1..=s.max_depth {
-        *rays += 1;
+        rays.gather += 1;
         let Some(h) = scene.intersect(&ray) else {
             if !specular {
                 return escaped_mis_n(scene, &ray, x.geom.p, g.m2 as f32, g.pdf, false);

@@ -65,6 +65,10 @@ pub fn trace_photons(
                 );
             }
             scene.count_rays(rays);
+            scene
+                .counters
+                .photon_rays
+                .fetch_add(rays, std::sync::atomic::Ordering::Relaxed);
             out
         })
         .collect();
