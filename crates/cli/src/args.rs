@@ -83,6 +83,9 @@ pub struct RenderArgs {
     /// Scale each sample down so no component exceeds VALUE (biased; off by default).
     #[arg(long, value_name = "VALUE")]
     pub clamp: Option<f32>,
+    /// Ray-tracing backend: the built-in BVH, or Embree 3 (builds with `--features embree`).
+    #[arg(long, value_name = "bvh|embree")]
+    pub accel: Option<String>,
     /// photon: caustics from `mis` (the seed's weights), `photons` only or `gather` rays only.
     #[arg(long, value_name = "mis|photons|gather")]
     pub caustics: Option<String>,

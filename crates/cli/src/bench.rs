@@ -124,6 +124,12 @@ pub fn run(a: BenchArgs) -> Result<()> {
     println!("| closest hit, random rays, 1 thread | {r_random:.2} Mrays/s |");
     println!("| closest hit, rays aimed inward, 1 thread | {r_inward:.2} Mrays/s |");
     println!("| any hit, random shadow rays, 1 thread | {r_any:.2} Mrays/s |");
+    #[cfg(feature = "embree")]
+    embree_rates(
+        &mesh,
+        reps,
+        [(&random, r_random), (&inward, r_inward), (&shadow, r_any)],
+    );
 
     // Path tracing the default scene.
     let res = if a.quick { 128 } else { 512 };
@@ -228,4 +234,45 @@ pub fn run(a: BenchArgs) -> Result<()> {
         println!("| peak memory of this run (VmHWM) | {m:.0} MiB |");
     }
     Ok(())
+}
+
+/// The same rays through Embree 3 (feature `embree`), with the ratio to the
+/// built-in BVH's rates (`lumis / Embree`; above 1: lumis is faster).
+#[cfg(feature = "embree")]
+fn embree_rates(
+    mesh: &lumis_render::geometry::TriangleMesh,
+    reps: usize,
+    sets: [(&[lumis_render::geometry::Ray], f64); 3],
+) {
+    use lumis_render::accel::embree::EmbreeMesh;
+    let build = time_it(reps, || {
+        std::hint::black_box(EmbreeMesh::new(mesh));
+    });
+    let em = EmbreeMesh::new(mesh);
+    println!("| Embree 3 build, same mesh | {:.0} ms |", build * 1e3);
+    let labels = [
+        "closest hit, random rays",
+        "closest hit, rays aimed inward",
+        "any hit, random shadow rays",
+    ];
+    for (k, (rays, lumis_rate)) in sets.into_iter().enumerate() {
+        let any = k == 2;
+        let s = single_thread(|| {
+            time_it(reps, || {
+                for r in rays {
+                    if any {
+                        std::hint::black_box(em.any(r));
+                    } else {
+                        std::hint::black_box(em.closest(r));
+                    }
+                }
+            })
+        });
+        let rate = rays.len() as f64 / s / 1e6;
+        println!(
+            "| Embree 3 {}, 1 thread | {rate:.2} Mrays/s (lumis/Embree {:.2}) |",
+            labels[k],
+            lumis_rate / rate
+        );
+    }
 }

@@ -140,7 +140,8 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     .map_err(|d| anyhow::anyhow!("{d}"))?;
     phases.parse = t.elapsed();
     let t = Instant::now();
-    let loaded: LoadedScene = build_scene(&desc, &ov).map_err(|d| anyhow::anyhow!("{d}"))?;
+    let mut loaded: LoadedScene = build_scene(&desc, &ov).map_err(|d| anyhow::anyhow!("{d}"))?;
+    select_accel(&mut loaded.scene, a.accel.as_deref())?;
     phases.build = t.elapsed();
     drop(desc);
     for w in &loaded.warnings {
@@ -369,4 +370,20 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         return Ok(ExitCode::from(EXIT_INTERRUPTED));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `--accel`: the built-in BVH (default) or Embree (feature `embree`).
+fn select_accel(scene: &mut lumis_render::scene::Scene, accel: Option<&str>) -> Result<()> {
+    match accel.unwrap_or("bvh") {
+        "bvh" => {}
+        #[cfg(feature = "embree")]
+        "embree" => scene.use_embree(true),
+        #[cfg(not(feature = "embree"))]
+        "embree" => {
+            let _ = scene;
+            bail!("this lumis was built without Embree: build it with `--features embree` (needs libembree-dev)")
+        }
+        other => bail!("unknown --accel `{other}`: expected `bvh` or `embree`"),
+    }
+    Ok(())
 }

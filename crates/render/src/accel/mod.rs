@@ -2,5 +2,7 @@
 
 pub mod bench;
 pub mod bvh;
+#[cfg(feature = "embree")]
+pub mod embree;
 pub mod mem;
 pub use bvh::Bvh;

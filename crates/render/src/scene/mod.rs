@@ -112,6 +112,9 @@ pub struct Scene {
     pub camera: Camera,
     pub bounds: Aabb,
     pub counters: RayCounters,
+    /// Embree's structures when [`Scene::use_embree`] chose that backend.
+    #[cfg(feature = "embree")]
+    pub embree: Option<crate::accel::embree::EmbreeAccel>,
 }
 
 impl Scene {
@@ -166,6 +169,8 @@ impl Scene {
             camera,
             bounds,
             counters: RayCounters::default(),
+            #[cfg(feature = "embree")]
+            embree: None,
         }
     }
 
@@ -174,8 +179,34 @@ impl Scene {
         self.world.memory_bytes() + self.instances.memory_bytes() + self.shapes.memory_bytes()
     }
 
+    /// Traces rays with Embree from now on (`on`), or with the built-in BVH.
+    #[cfg(feature = "embree")]
+    pub fn use_embree(&mut self, on: bool) {
+        self.embree = on.then(|| crate::accel::embree::EmbreeAccel::build(self));
+    }
+
     /// Closest intersection along the ray, or `None`.
+    #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        #[cfg(feature = "embree")]
+        if let Some(e) = &self.embree {
+            return e.intersect(self, ray);
+        }
+        self.intersect_bvh(ray)
+    }
+
+    /// Whether anything blocks the ray before `ray.tmax`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        #[cfg(feature = "embree")]
+        if let Some(e) = &self.embree {
+            return e.occluded(ray);
+        }
+        self.occluded_bvh(ray)
+    }
+
+    /// [`Scene::intersect`] with the built-in BVH whatever the backend.
+    pub fn intersect_bvh(&self, ray: &Ray) -> Option<Hit> {
         let world_hit = self.world.closest(&self.shapes, ray);
         if !self.instances.is_empty() {
             let mut r = *ray;
@@ -192,8 +223,8 @@ impl Scene {
         Some(Hit::new(h.t, geom, self.world.prims[h.slot as usize]))
     }
 
-    /// Whether anything blocks the ray before `ray.tmax`.
-    pub fn occluded(&self, ray: &Ray) -> bool {
+    /// [`Scene::occluded`] with the built-in BVH whatever the backend.
+    pub fn occluded_bvh(&self, ray: &Ray) -> bool {
         self.world.any(&self.shapes, ray)
             || (!self.instances.is_empty() && self.instances.any(&self.shapes, ray))
     }
