@@ -36,6 +36,19 @@ pub fn png(data: &[u8]) {
     let _ = decode_image(data, ImageFormat::Png, "fuzz.png");
 }
 
+/// A checkpoint file (`--resume`). The trailing checksum is recomputed
+/// first, so mutations reach the parser behind it.
+pub fn checkpoint(data: &[u8]) {
+    use lumis_render::checkpoint::{Checkpoint, Fnv};
+    let mut d = data.to_vec();
+    if d.len() >= 8 {
+        let n = d.len() - 8;
+        let h = Fnv::default().write(&d[..n]).0;
+        d[n..].copy_from_slice(&h.to_le_bytes());
+    }
+    let _ = Checkpoint::decode(&d, "fuzz.ckpt");
+}
+
 /// The entry point for a corpus folder name.
 pub fn by_name(target: &str) -> Option<fn(&[u8])> {
     Some(match target {
@@ -44,6 +57,7 @@ pub fn by_name(target: &str) -> Option<fn(&[u8])> {
         "exr" => exr,
         "pfm" => pfm,
         "png" => png,
+        "checkpoint" => checkpoint,
         _ => return None,
     })
 }

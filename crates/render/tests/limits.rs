@@ -113,3 +113,71 @@ fn photon_budget_beyond_memory() {
     assert!(e.contains("photons") && e.contains("GiB"), "{e}");
     assert!(big < MIB, "allocated {big} bytes");
 }
+
+#[test]
+fn image_headers_declaring_huge_sizes() {
+    use lumis_render::image_io::{decode_image, write_image, ImageFormat, RgbImage};
+    // EXR: a real 2x2 file whose data window is patched to 10^9 x 10^9.
+    let dir = std::env::temp_dir().join(format!("lumis-limits-img-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("a.exr");
+    write_image(&p, &RgbImage::new(2, 2, vec![0.5; 12]), 0.0).unwrap();
+    let mut exr = std::fs::read(&p).unwrap();
+    let key = b"dataWindow\0box2i\0";
+    let at = exr.windows(key.len()).position(|w| w == key).unwrap() + key.len() + 4;
+    for (i, v) in [0i32, 0, 999_999_999, 999_999_999].iter().enumerate() {
+        exr[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+    }
+    let (r, big) = largest_alloc(|| decode_image(&exr, ImageFormat::Exr, "a.exr"));
+    let e = r.unwrap_err().to_string();
+    assert!(e.starts_with("a.exr: not a valid EXR file"), "{e}");
+    assert!(e.contains("declares 1000000000x1000000000 pixels"), "{e}");
+    assert!(big < 16 * MIB, "allocated {big} bytes");
+    // PFM: the header claims more data than the file has.
+    let pfm = b"PF\n1000000000 1000000000\n-1.0\n\0\0\0\0";
+    let (r, big) = largest_alloc(|| decode_image(pfm, ImageFormat::Pfm, "a.pfm"));
+    assert!(r
+        .unwrap_err()
+        .to_string()
+        .contains("shorter than its header"));
+    assert!(big < MIB, "allocated {big} bytes");
+    // PNG: a 100000 x 100000 IHDR in front of a tiny image stream.
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let chunk = |png: &mut Vec<u8>, ty: &[u8], data: &[u8]| {
+        png.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let start = png.len();
+        png.extend_from_slice(ty);
+        png.extend_from_slice(data);
+        let crc = crc32(&png[start..]);
+        png.extend_from_slice(&crc.to_be_bytes());
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 2, 0, 0, 0]);
+    chunk(&mut png, b"IHDR", &ihdr);
+    chunk(
+        &mut png,
+        b"IDAT",
+        &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01],
+    );
+    chunk(&mut png, b"IEND", &[]);
+    let (r, big) = largest_alloc(|| decode_image(&png, ImageFormat::Png, "a.png"));
+    assert!(r.is_err());
+    assert!(big < 16 * MIB, "allocated {big} bytes");
+}
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut c = 0xffff_ffffu32;
+    for &b in data {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xedb8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
