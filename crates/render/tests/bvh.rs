@@ -477,6 +477,7 @@ fn scene_matches_brute_force() {
                     Prim::Triangle { tri, .. } => &reference[tri as usize],
                     Prim::Sphere(i) => &reference[tris.len() + 2 * i as usize],
                     Prim::Disk(i) => &reference[tris.len() + 2 * i as usize + 1],
+                    Prim::Cylinder(_) => unreachable!("no cylinders in this scene"),
                 };
                 assert_eq!(shape_hit(s, ray, f32::INFINITY), Some(h.t), "seed {seed}");
             }

@@ -13,7 +13,7 @@ use lumis_render::load::LoadedScene;
 use support::envmap::{lumpy, write_env};
 use support::*;
 
-const TESTS: usize = 12;
+const TESTS: usize = 15;
 
 fn scene(shape: &str, two_sided: bool) -> LoadedScene {
     let text = format!(
@@ -41,11 +41,17 @@ fn pdf_li(l: &LoadedScene, light: u32, p: Vec3, wi: Vec3) -> f32 {
 }
 
 fn check_li(l: &LoadedScene, p: Vec3, label: &str) {
+    check_li_breaks(l, p, label, Vec::new())
+}
+
+/// [`check_li`] with outline curves along constant `cos theta` declared.
+fn check_li_breaks(l: &LoadedScene, p: Vec3, label: &str, z_breaks: Vec<f64>) {
     // Light outlines are curves across the bins: 30x30 quadrature points per bin
     // keep the integration error of edge bins below the test's resolution.
     let cfg = Chi2Config {
         samples: 400_000,
         quad_points: 30,
+        z_breaks,
         ..Default::default()
     };
     for (i, light) in l.scene.lights.iter().enumerate() {
@@ -95,6 +101,35 @@ fn sphere_light_from_outside_and_inside() {
     check_li(&l, Vec3::new(0.1, 0.2, 0.0), "sphere outside (cone)");
     let l = scene(r#"Shape "sphere" "float radius" [ 2 ]"#, true);
     check_li(&l, Vec3::new(0.3, -0.4, 0.5), "sphere inside (area)");
+}
+
+#[test]
+fn partial_sphere_and_cylinder_lights() {
+    // Reference points from which every direction meets the surface at most
+    // once (the chi-square compares against the density at the first hit).
+    let l = scene(
+        r#"Translate 0 0 1 Shape "sphere" "float radius" [ 1.5 ] "float zmin" [ -0.5 ] "float zmax" [ 1.2 ] "float phimax" [ 250 ]"#,
+        true,
+    );
+    check_li(&l, Vec3::new(0.1, 0.2, 1.1), "partial sphere, inside");
+    let l = scene(
+        r#"Shape "sphere" "float radius" [ 1 ] "float zmin" [ 0.6 ]"#,
+        false,
+    );
+    // Seen from the axis, the cap's rim (z = 0.6) is a circle of constant
+    // cos theta = -2.4 / |(0.8, 0, -2.4)|.
+    let rim = -2.4 / (0.64f64 + 5.76).sqrt();
+    check_li_breaks(
+        &l,
+        Vec3::new(0.0, 0.0, 3.0),
+        "spherical cap, outside",
+        vec![rim],
+    );
+    let l = scene(
+        r#"Rotate 20 1 0 0 Shape "cylinder" "float radius" [ 0.8 ] "float zmin" [ -1 ] "float zmax" [ 2 ] "float phimax" [ 300 ]"#,
+        true,
+    );
+    check_li(&l, Vec3::new(0.1, -0.2, 0.3), "cylinder, inside");
 }
 
 #[test]

@@ -22,8 +22,11 @@ pub enum PlyError {
         path: String,
         source: std::io::Error,
     },
-    #[error("{}: gzip PLY not supported yet", path.as_deref().unwrap_or("PLY data"))]
-    Gzip { path: Option<String> },
+    #[error("{}: corrupt gzip data: {message}", path.as_deref().unwrap_or("PLY data"))]
+    Gzip {
+        path: Option<String>,
+        message: String,
+    },
     #[error("{}: {message}", path.as_deref().unwrap_or("PLY data"))]
     Invalid {
         path: Option<String>,
@@ -40,9 +43,6 @@ fn invalid(message: impl Into<String>) -> PlyError {
 
 pub fn read_ply(path: &Path) -> Result<PlyMesh, PlyError> {
     let shown = path.display().to_string();
-    if shown.ends_with(".gz") {
-        return Err(PlyError::Gzip { path: Some(shown) });
-    }
     let bytes = std::fs::read(path).map_err(|source| PlyError::Io {
         path: shown.clone(),
         source,
@@ -52,14 +52,40 @@ pub fn read_ply(path: &Path) -> Result<PlyMesh, PlyError> {
             path: Some(shown),
             message,
         },
-        PlyError::Gzip { .. } => PlyError::Gzip { path: Some(shown) },
+        PlyError::Gzip { message, .. } => PlyError::Gzip {
+            path: Some(shown),
+            message,
+        },
         other => other,
     })
 }
 
+/// Largest decompressed size of a gzipped PLY file.
+const MAX_GUNZIPPED: u64 = 8 << 30;
+
+/// Parses PLY data, gzip-compressed (`.ply.gz`) or not.
 pub fn parse_ply(bytes: &[u8]) -> Result<PlyMesh, PlyError> {
     if bytes.starts_with(&[0x1f, 0x8b]) {
-        return Err(PlyError::Gzip { path: None });
+        use std::io::Read;
+        let mut out = Vec::new();
+        let gz = |message: String| PlyError::Gzip {
+            path: None,
+            message,
+        };
+        flate2::read::MultiGzDecoder::new(bytes)
+            .take(MAX_GUNZIPPED + 1)
+            .read_to_end(&mut out)
+            .map_err(|e| gz(e.to_string()))?;
+        if out.len() as u64 > MAX_GUNZIPPED {
+            return Err(gz(format!(
+                "decompresses to more than {} GiB",
+                MAX_GUNZIPPED >> 30
+            )));
+        }
+        if out.starts_with(&[0x1f, 0x8b]) {
+            return Err(gz("gzip inside gzip".into()));
+        }
+        return parse_ply(&out);
     }
     let (header, data_start) = header::parse(bytes)?;
     let data = &bytes[data_start..];

@@ -190,7 +190,10 @@ fn v3_lights_film_and_options() {
     );
     assert_eq!(l(0).get_float("scale", 1.0).unwrap(), 125.0);
     assert_eq!(names(l(1)), ["rgb L"]);
-    assert_eq!(names(l(2)), ["float scale", "string filename"]);
+    assert_eq!(
+        names(l(2)),
+        ["float scale", "string filename", "string mapping"]
+    );
     assert_eq!(l(2).get_float("scale", 1.0).unwrap(), 6.0);
     assert_eq!(l(3).get_float("scale", 1.0).unwrap(), 1.0);
     assert_eq!(

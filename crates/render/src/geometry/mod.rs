@@ -1,6 +1,7 @@
 //! Rays, bounding boxes and shapes (triangle meshes, spheres, disks).
 
 pub mod aabb;
+pub mod cylinder;
 pub mod disk;
 pub mod mesh;
 pub mod ray;
@@ -8,6 +9,7 @@ pub mod sphere;
 pub mod triangle;
 
 pub use aabb::Aabb;
+pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::TriangleMesh;
 pub use ray::{offset_ray_origin, Ray};
@@ -25,6 +27,7 @@ pub enum Prim {
     },
     Sphere(u32),
     Disk(u32),
+    Cylinder(u32),
 }
 
 /// What an intersection routine reports before shading data is computed.

@@ -1,4 +1,4 @@
-//! Analytic sphere (full; pbrt's zmin/zmax/phimax come with the scene-loading issue).
+//! Analytic sphere with pbrt's `zmin`/`zmax`/`phimax` cuts.
 
 use super::{Aabb, Ray, SurfaceGeom};
 use lumis_math::{Transform, Vec2, Vec3, PI};
@@ -11,10 +11,26 @@ pub struct Sphere {
     /// World-space center and radius (transforms are assumed similarity; checked at load).
     pub center: Vec3,
     pub world_radius: f32,
+    /// Object-space cuts: `zmin <= z <= zmax`, `0 <= phi <= phi_max` (radians).
+    pub zmin: f32,
+    pub zmax: f32,
+    pub phi_max: f32,
 }
 
 impl Sphere {
     pub fn new(object_to_world: Transform, radius: f32, reverse: bool) -> Sphere {
+        Sphere::partial(object_to_world, radius, -radius, radius, 360.0, reverse)
+    }
+
+    /// pbrt's sphere: `zmin`, `zmax` clamped to the radius, `phimax` in degrees.
+    pub fn partial(
+        object_to_world: Transform,
+        radius: f32,
+        zmin: f32,
+        zmax: f32,
+        phimax_deg: f32,
+        reverse: bool,
+    ) -> Sphere {
         let center = object_to_world.point(Vec3::ZERO);
         let scale = lumis_math::Mat3::from_mat4(object_to_world.m)
             .determinant()
@@ -26,22 +42,51 @@ impl Sphere {
             flip_normals: reverse ^ object_to_world.swaps_handedness(),
             center,
             world_radius: radius * scale,
+            zmin: zmin.min(zmax).clamp(-radius, radius),
+            zmax: zmin.max(zmax).clamp(-radius, radius),
+            phi_max: phimax_deg.clamp(0.0, 360.0).to_radians(),
         }
+    }
+
+    /// Whether any part is cut away.
+    #[inline]
+    pub fn is_partial(&self) -> bool {
+        self.zmin > -self.radius || self.zmax < self.radius || self.phi_max < 2.0 * PI
     }
 
     pub fn bounds(&self) -> Aabb {
-        let r = Vec3::splat(self.world_radius);
-        Aabb {
-            min: self.center - r,
-            max: self.center + r,
+        if !self.is_partial() {
+            let r = Vec3::splat(self.world_radius);
+            return Aabb {
+                min: self.center - r,
+                max: self.center + r,
+            };
         }
+        let r = self.radius;
+        let b = Aabb {
+            min: Vec3::new(-r, -r, self.zmin),
+            max: Vec3::new(r, r, self.zmax),
+        };
+        crate::scene::transform_box(&self.object_to_world, &b)
     }
 
+    /// World-space area (similarity transform): `phi_max r (zmax - zmin)`, scaled.
     pub fn area(&self) -> f32 {
-        4.0 * PI * self.world_radius * self.world_radius
+        let s = self.world_radius / self.radius;
+        self.phi_max * self.radius * (self.zmax - self.zmin) * s * s
     }
 
-    /// Closest t in (0, tmax), in the ray's parameter.
+    /// Whether object-space surface point `p` survives the cuts.
+    #[inline]
+    fn kept(&self, p: Vec3) -> bool {
+        if p.z < self.zmin || p.z > self.zmax {
+            return false;
+        }
+        self.phi_max >= 2.0 * PI || phi_of(p) <= self.phi_max
+    }
+
+    /// Closest t in (0, tmax), in the ray's parameter; on a partial sphere a
+    /// hit on a cut-away part is skipped for the far root.
     #[inline]
     pub fn intersect(&self, ray: &Ray, tmax: f32) -> Option<f32> {
         let inv = &self.object_to_world.inv;
@@ -67,28 +112,41 @@ impl Sphere {
         if t0 > t1 {
             std::mem::swap(&mut t0, &mut t1);
         }
-        if t0 > 0.0 && t0 < tmax {
-            Some(t0)
-        } else if t1 > 0.0 && t1 < tmax {
-            Some(t1)
-        } else {
-            None
-        }
+        let partial = self.is_partial();
+        [t0, t1]
+            .into_iter()
+            .find(|&t| t > 0.0 && t < tmax && (!partial || self.kept(self.on_surface(o + t * d))))
+    }
+
+    /// Object-space point pushed onto the sphere (pbrt's refinement).
+    #[inline]
+    fn on_surface(&self, p: Vec3) -> Vec3 {
+        p * (self.radius / p.length().max(1e-30))
     }
 
     /// Geometry at world point `p` (projected back onto the surface).
     pub fn geometry_at(&self, p_world: Vec3) -> SurfaceGeom {
-        let mut po = self.object_to_world.inv.transform_point3(p_world);
-        po *= self.radius / po.length().max(1e-30);
+        let po = self.on_surface(self.object_to_world.inv.transform_point3(p_world));
+        self.geometry_object(po)
+    }
+
+    fn geometry_object(&self, po: Vec3) -> SurfaceGeom {
         let p = self.object_to_world.point(po);
         let mut n = self.object_to_world.normal(po).normalize();
         if self.flip_normals {
             n = -n;
         }
-        let phi = po.y.atan2(po.x);
-        let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-        let cos_theta = (po.z / self.radius).clamp(-1.0, 1.0);
-        let uv = Vec2::new(phi / (2.0 * PI), (cos_theta.acos()) / PI);
+        let phi = phi_of(po);
+        let theta = (po.z / self.radius).clamp(-1.0, 1.0).acos();
+        let (tz0, tz1) = (
+            (self.zmin / self.radius).clamp(-1.0, 1.0).acos(),
+            (self.zmax / self.radius).clamp(-1.0, 1.0).acos(),
+        );
+        let uv = if self.is_partial() {
+            Vec2::new(phi / self.phi_max, (theta - tz0) / (tz1 - tz0))
+        } else {
+            Vec2::new(phi / (2.0 * PI), theta / PI)
+        };
         let mut dpdu = self.object_to_world.vector(Vec3::new(-po.y, po.x, 0.0));
         if dpdu.length_squared() < 1e-20 {
             dpdu = lumis_math::Frame::from_normal(n).s;
@@ -100,6 +158,28 @@ impl Sphere {
             dpdu,
             uv,
         }
+    }
+
+    /// Uniform point by area on the kept part: z uniform in [zmin, zmax]
+    /// (Archimedes) and phi uniform in [0, phi_max]. Returns (point, normal).
+    pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
+        let z = self.zmin + u.x * (self.zmax - self.zmin);
+        let phi = u.y * self.phi_max;
+        let r_xy = (self.radius * self.radius - z * z).max(0.0).sqrt();
+        let po = Vec3::new(r_xy * phi.cos(), r_xy * phi.sin(), z);
+        let g = self.geometry_object(po);
+        (g.p, g.ng)
+    }
+}
+
+/// Azimuth in [0, 2 pi).
+#[inline]
+fn phi_of(p: Vec3) -> f32 {
+    let phi = p.y.atan2(p.x);
+    if phi < 0.0 {
+        phi + 2.0 * PI
+    } else {
+        phi
     }
 }
 
@@ -119,5 +199,49 @@ mod tests {
         // From inside, the far side.
         let r = Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::Z);
         assert!((s.intersect(&r, f32::INFINITY).unwrap() - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn cut_sphere_takes_the_far_hit_or_misses() {
+        // Hemisphere z >= 0 of radius 2, and a half in phi (x >= 0 side... phi in [0, 180]: y >= 0).
+        let s = Sphere::partial(Transform::IDENTITY, 2.0, 0.0, 3.0, 180.0, false);
+        assert_eq!((s.zmin, s.zmax), (0.0, 2.0));
+        // Straight down the z axis from above: the top, at t = 3.
+        let down = Ray::new(Vec3::new(0.5, 0.5, 5.0), -Vec3::Z);
+        let t = s.intersect(&down, f32::INFINITY).unwrap();
+        assert!((t - (5.0 - (4.0f32 - 0.5).sqrt())).abs() < 1e-5);
+        // Up from below: the near hit (z < 0) is cut away, the far one is kept.
+        let up = Ray::new(Vec3::new(0.5, 0.5, -5.0), Vec3::Z);
+        let t = s.intersect(&up, f32::INFINITY).unwrap();
+        assert!((t - (5.0 + 3.5f32.sqrt())).abs() < 1e-4);
+        assert!(s.intersect(&up, 5.0).is_none(), "far hit beyond tmax");
+        // Through the y < 0 half only: both hits cut away.
+        let miss = Ray::new(Vec3::new(-5.0, -0.5, 0.5), Vec3::X);
+        assert!(s.intersect(&miss, f32::INFINITY).is_none());
+        // Along x at y > 0: the near hit at x = -sqrt(4 - 0.25 - 0.25) is kept.
+        let hit = Ray::new(Vec3::new(-5.0, 0.5, 0.5), Vec3::X);
+        let t = s.intersect(&hit, f32::INFINITY).unwrap();
+        assert!((t - (5.0 - 3.5f32.sqrt())).abs() < 1e-5);
+        // Area: phi_max r (zmax - zmin) = pi * 2 * 2.
+        assert!((s.area() - 4.0 * PI).abs() < 1e-5);
+        let b = s.bounds();
+        assert!(b.min.z >= -1e-6 && b.max.z <= 2.0 + 1e-6);
+    }
+
+    #[test]
+    fn area_samples_stay_on_the_kept_part() {
+        let t = Transform::new(Mat4::from_scale(Vec3::splat(2.0))).unwrap();
+        let s = Sphere::partial(t, 1.0, -0.3, 0.8, 250.0, false);
+        for i in 0..64 {
+            let u = Vec2::new((i % 8) as f32 / 7.0, (i / 8) as f32 / 7.0);
+            let (p, n) = s.sample_area(u);
+            let po = p / 2.0;
+            assert!((po.length() - 1.0).abs() < 1e-5);
+            assert!(po.z >= -0.3 - 1e-5 && po.z <= 0.8 + 1e-5);
+            assert!(phi_of(po) <= 250f32.to_radians() + 1e-4 || po.y.abs() < 1e-5);
+            assert!((n - po).length() < 1e-4);
+        }
+        // World area: 250° × 1 × 1.1, times scale² = 4.
+        assert!((s.area() - 250f32.to_radians() * 1.1 * 4.0).abs() < 1e-4);
     }
 }

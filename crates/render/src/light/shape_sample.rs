@@ -27,6 +27,15 @@ pub fn sample_area(shapes: &Shapes, prim: Prim, u: Vec2) -> ShapePoint {
                 pdf: 1.0 / m.area(tri),
             }
         }
+        Prim::Sphere(i) if shapes.spheres[i as usize].is_partial() => {
+            let s = &shapes.spheres[i as usize];
+            let (p, n) = s.sample_area(u);
+            ShapePoint {
+                p,
+                n,
+                pdf: 1.0 / s.area(),
+            }
+        }
         Prim::Sphere(i) => {
             let s = &shapes.spheres[i as usize];
             let d = square_to_uniform_sphere(u);
@@ -46,6 +55,15 @@ pub fn sample_area(shapes: &Shapes, prim: Prim, u: Vec2) -> ShapePoint {
                 pdf: 1.0 / d.area(),
             }
         }
+        Prim::Cylinder(i) => {
+            let c = &shapes.cylinders[i as usize];
+            let (p, n) = c.sample_area(u);
+            ShapePoint {
+                p,
+                n,
+                pdf: 1.0 / c.area(),
+            }
+        }
     }
 }
 
@@ -53,9 +71,10 @@ pub fn sample_area(shapes: &Shapes, prim: Prim, u: Vec2) -> ShapePoint {
 pub fn sample_solid_angle(shapes: &Shapes, prim: Prim, p_ref: Vec3, u: Vec2) -> Option<ShapePoint> {
     if let Prim::Sphere(i) = prim {
         let s = &shapes.spheres[i as usize];
+        // A partial sphere does not fill the cone: sampled by area below.
         let dc2 = (s.center - p_ref).length_squared();
         let r2 = s.world_radius * s.world_radius;
-        if dc2 > r2 * 1.0001 {
+        if dc2 > r2 * 1.0001 && !s.is_partial() {
             // Outside: sample the cone of directions the sphere subtends.
             let sin2_max = r2 / dc2;
             let cos_max = safe_sqrt(1.0 - sin2_max);
@@ -96,9 +115,10 @@ pub fn sample_solid_angle(shapes: &Shapes, prim: Prim, p_ref: Vec3, u: Vec2) -> 
 pub fn pdf_solid_angle(shapes: &Shapes, prim: Prim, p_ref: Vec3, p: Vec3, n: Vec3) -> f32 {
     if let Prim::Sphere(i) = prim {
         let s = &shapes.spheres[i as usize];
+        // A partial sphere does not fill the cone: sampled by area below.
         let dc2 = (s.center - p_ref).length_squared();
         let r2 = s.world_radius * s.world_radius;
-        if dc2 > r2 * 1.0001 {
+        if dc2 > r2 * 1.0001 && !s.is_partial() {
             return uniform_cone_pdf(safe_sqrt(1.0 - r2 / dc2));
         }
     }

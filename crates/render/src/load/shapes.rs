@@ -3,7 +3,7 @@
 use super::materials::BuiltMaterials;
 use super::spectrum::rgb_param;
 use super::Warnings;
-use crate::geometry::{Disk, Prim, Sphere, TriangleMesh};
+use crate::geometry::{Cylinder, Disk, Prim, Sphere, TriangleMesh};
 use crate::light::{AreaLight, Light};
 use crate::scene::{Instance, InstanceSet, PrimInfo, Shapes, NO_LIGHT};
 use lumis_math::{Rgb, Vec2, Vec3, PI};
@@ -194,12 +194,9 @@ fn build_shape(
         }
         "sphere" => {
             let radius = p.get_float("radius", 1.0)?;
-            let partial = p.get_float("zmin", -radius)? > -radius
-                || p.get_float("zmax", radius)? < radius
-                || p.get_float("phimax", 360.0)? < 360.0;
-            if partial {
-                w.push(Diagnostic::warning(&e.loc, "partial spheres (zmin/zmax/phimax) are not supported yet; rendering the full sphere"));
-            }
+            let zmin = p.get_float("zmin", -radius)?;
+            let zmax = p.get_float("zmax", radius)?;
+            let phimax = p.get_float("phimax", 360.0)?;
             w.unused(p, "shape \"sphere\"", &["radius", "zmin", "zmax", "phimax"]);
             if !(radius > 0.0) {
                 return Err(Diagnostic::error(
@@ -207,11 +204,37 @@ fn build_shape(
                     "sphere radius must be positive",
                 ));
             }
+            let sphere = Sphere::partial(xf, radius, zmin, zmax, phimax, s.reverse_orientation);
+            if !(sphere.area() > 0.0) {
+                return Err(Diagnostic::error(
+                    &e.loc,
+                    "this sphere has no surface left (zmin = zmax or phimax = 0)",
+                ));
+            }
             let i = shapes.spheres.len() as u32;
-            shapes
-                .spheres
-                .push(Sphere::new(xf, radius, s.reverse_orientation));
+            shapes.spheres.push(sphere);
             vec![Prim::Sphere(i)]
+        }
+        "cylinder" => {
+            let radius = p.get_float("radius", 1.0)?;
+            let zmin = p.get_float("zmin", -1.0)?;
+            let zmax = p.get_float("zmax", 1.0)?;
+            let phimax = p.get_float("phimax", 360.0)?;
+            w.unused(
+                p,
+                "shape \"cylinder\"",
+                &["radius", "zmin", "zmax", "phimax"],
+            );
+            let c = Cylinder::new(xf, radius, zmin, zmax, phimax, s.reverse_orientation);
+            if !(radius > 0.0 && c.area() > 0.0) {
+                return Err(Diagnostic::error(
+                    &e.loc,
+                    "cylinder needs radius > 0, zmin != zmax and phimax > 0",
+                ));
+            }
+            let i = shapes.cylinders.len() as u32;
+            shapes.cylinders.push(c);
+            vec![Prim::Cylinder(i)]
         }
         "disk" => {
             let height = p.get_float("height", 0.0)?;

@@ -76,6 +76,7 @@ impl PrimBvh {
         match self.prims[slot as usize].prim {
             Prim::Sphere(i) => shapes.spheres[i as usize].intersect(r, tmax),
             Prim::Disk(i) => shapes.disks[i as usize].intersect(r, tmax),
+            Prim::Cylinder(i) => shapes.cylinders[i as usize].intersect(r, tmax),
             Prim::Triangle { .. } => None,
         }
     }
@@ -126,6 +127,7 @@ impl PrimBvh {
             }
             Prim::Sphere(i) => shapes.spheres[i as usize].geometry_at(ray.at(h.t)),
             Prim::Disk(i) => shapes.disks[i as usize].geometry_at(ray.at(h.t)),
+            Prim::Cylinder(i) => shapes.cylinders[i as usize].geometry_at(ray.at(h.t)),
         }
     }
 }

@@ -8,7 +8,7 @@ pub use instance::{transform_box, Instance, InstanceHit, InstanceSet, Instances}
 pub use level::{LevelHit, PrimBvh};
 
 use crate::camera::Camera;
-use crate::geometry::{Aabb, Disk, Prim, Ray, Sphere, SurfaceGeom, TriangleMesh};
+use crate::geometry::{Aabb, Cylinder, Disk, Prim, Ray, Sphere, SurfaceGeom, TriangleMesh};
 use crate::light::{Light, LightSampler};
 use crate::material::Material;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -19,6 +19,7 @@ pub struct Shapes {
     pub meshes: Vec<TriangleMesh>,
     pub spheres: Vec<Sphere>,
     pub disks: Vec<Disk>,
+    pub cylinders: Vec<Cylinder>,
 }
 
 impl Shapes {
@@ -27,6 +28,7 @@ impl Shapes {
             Prim::Triangle { mesh, tri } => self.meshes[mesh as usize].bounds(tri),
             Prim::Sphere(i) => self.spheres[i as usize].bounds(),
             Prim::Disk(i) => self.disks[i as usize].bounds(),
+            Prim::Cylinder(i) => self.cylinders[i as usize].bounds(),
         }
     }
 
@@ -46,6 +48,7 @@ impl Shapes {
         self.meshes.iter().map(mesh).sum::<usize>()
             + self.spheres.len() * size_of::<Sphere>()
             + self.disks.len() * size_of::<Disk>()
+            + self.cylinders.len() * size_of::<Cylinder>()
     }
 
     pub fn area(&self, p: Prim) -> f32 {
@@ -53,6 +56,7 @@ impl Shapes {
             Prim::Triangle { mesh, tri } => self.meshes[mesh as usize].area(tri),
             Prim::Sphere(i) => self.spheres[i as usize].area(),
             Prim::Disk(i) => self.disks[i as usize].area(),
+            Prim::Cylinder(i) => self.cylinders[i as usize].area(),
         }
     }
 }

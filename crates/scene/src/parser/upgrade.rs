@@ -287,6 +287,18 @@ pub fn light(e: &mut Entity, area: bool) -> Result<(), Diagnostic> {
             }
         }
     }
+    if ps.has("mapname") && e.ty == "infinite" {
+        // pbrt-v3 environment maps are latitude-longitude images (pbrt-v4's
+        // are equal-area squares): say so (a lumis extension parameter).
+        let loc = ps.loc_of("mapname").expect("present");
+        add(
+            ps,
+            "string",
+            "mapping",
+            Value::Strings(vec!["latlong".into()]),
+            &loc,
+        );
+    }
     rename(ps, "mapname", "filename");
     if total != 1.0 {
         let (old, loc) = match take(ps, "scale") {

@@ -153,6 +153,12 @@ fn truncated_and_malformed_inputs_are_errors() {
         parse_ply(&[0x1f, 0x8b, 8, 0]),
         Err(PlyError::Gzip { .. })
     ));
+    // A valid gzip stream of garbage is a PLY error, not a panic.
+    let junk = gzip(b"not a ply\n");
+    assert!(parse_ply(&junk)
+        .unwrap_err()
+        .to_string()
+        .contains("not a PLY file"));
 }
 
 #[test]
@@ -161,15 +167,37 @@ fn read_ply_names_the_file() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("/nonexistent/mesh.ply"), "{e}");
-    let e = read_ply(Path::new("/nonexistent/mesh.ply.gz"))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("gzip PLY not supported yet"), "{e}");
     let dir = std::env::temp_dir().join(format!("lumis-ply-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join("bad.ply");
     std::fs::write(&p, b"ply\nformat ascii 1.0\nelement vertex 1\nend_header\n").unwrap();
     let e = read_ply(&p).unwrap_err().to_string();
     assert!(e.contains("bad.ply") && e.contains("lacks x"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+fn gzip(data: &[u8]) -> Vec<u8> {
+    use std::io::Write;
+    let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    enc.write_all(data).unwrap();
+    enc.finish().unwrap()
+}
+
+#[test]
+fn gzipped_ply_reads_like_the_plain_file() {
+    let text = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let plain = parse_ply(text).unwrap();
+    let dir = std::env::temp_dir().join(format!("lumis-plygz-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("tri.ply.gz");
+    std::fs::write(&p, gzip(text)).unwrap();
+    let gz = read_ply(&p).unwrap();
+    assert_eq!(gz.positions, plain.positions);
+    assert_eq!(gz.indices, plain.indices);
+    let bad = dir.join("cut.ply.gz");
+    let g = gzip(text);
+    std::fs::write(&bad, &g[..g.len() / 2]).unwrap();
+    let e = read_ply(&bad).unwrap_err().to_string();
+    assert!(e.contains("cut.ply.gz") && e.contains("gzip"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }

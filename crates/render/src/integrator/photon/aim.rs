@@ -37,6 +37,7 @@ impl Targets {
                     Prim::Triangle { mesh, .. } => (0, mesh),
                     Prim::Sphere(i) => (1, i),
                     Prim::Disk(i) => (2, i),
+                    Prim::Cylinder(i) => (3, i),
                 };
                 let b = boxes.entry(key).or_insert(Aabb::EMPTY);
                 *b = b.union(&scene.shapes.bounds(p.prim));
