@@ -50,11 +50,8 @@ struct Analytic {
 impl Analytic {
     #[inline]
     fn intersect(&self, i: u32, r: &Ray, tmax: f32) -> Option<f32> {
-        match self.prims[i as usize] {
-            Prim::Sphere(s) => self.shapes.spheres[s as usize].intersect(r, tmax),
-            Prim::Disk(d) => self.shapes.disks[d as usize].intersect(r, tmax),
-            Prim::Triangle { .. } => None,
-        }
+        self.shapes
+            .intersect_analytic(self.prims[i as usize], r, tmax)
     }
 }
 

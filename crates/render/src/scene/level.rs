@@ -73,12 +73,7 @@ impl PrimBvh {
 
     #[inline(always)]
     fn analytic(&self, shapes: &Shapes, slot: u32, r: &Ray, tmax: f32) -> Option<f32> {
-        match self.prims[slot as usize].prim {
-            Prim::Sphere(i) => shapes.spheres[i as usize].intersect(r, tmax),
-            Prim::Disk(i) => shapes.disks[i as usize].intersect(r, tmax),
-            Prim::Cylinder(i) => shapes.cylinders[i as usize].intersect(r, tmax),
-            Prim::Triangle { .. } => None,
-        }
+        shapes.intersect_analytic(self.prims[slot as usize].prim, r, tmax)
     }
 
     /// Closest hit in (0, ray.tmax).

@@ -32,6 +32,18 @@ impl Shapes {
         }
     }
 
+    /// Hit distance in (0, tmax) on an analytic shape (`None` for triangles,
+    /// which the acceleration structures test themselves).
+    #[inline]
+    pub fn intersect_analytic(&self, p: Prim, r: &Ray, tmax: f32) -> Option<f32> {
+        match p {
+            Prim::Sphere(i) => self.spheres[i as usize].intersect(r, tmax),
+            Prim::Disk(i) => self.disks[i as usize].intersect(r, tmax),
+            Prim::Cylinder(i) => self.cylinders[i as usize].intersect(r, tmax),
+            Prim::Triangle { .. } => None,
+        }
+    }
+
     /// Bytes of vertex, index, normal and uv data and the analytic shapes.
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
