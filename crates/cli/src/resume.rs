@@ -55,18 +55,41 @@ pub fn prepare(a: RenderArgs) -> Result<(RenderArgs, Option<Checkpoint>)> {
     Ok((merged, Some(ck)))
 }
 
-/// Ties a checkpoint to the scene text and every setting that changes the
-/// image (files the scene includes are not hashed).
-pub fn scene_hash(scene_text: &[u8], o: &RenderOptions, s: &RenderSettings) -> u64 {
+/// Ties a checkpoint to the scene and every setting that changes the image:
+/// the main file's text, the built geometry (so edits of included files and
+/// meshes count too), the lights and materials, and the render settings.
+pub fn scene_hash(
+    scene_text: &[u8],
+    scene: &lumis_render::scene::Scene,
+    o: &RenderOptions,
+    s: &RenderSettings,
+) -> u64 {
     let mut o = o.clone();
     o.integrator_entity = None;
     let mut h = Fnv::default();
-    h.write(scene_text)
-        .write_str(&format!("{o:?}"))
-        .write_str(&format!(
-            "spp {} seed {} clamp {:?} sampler {:?} nan {:?} pass {}",
-            s.spp, s.seed, s.clamp, s.sampler, s.inject_nan, s.spp_per_pass
-        ));
+    h.write(scene_text);
+    for m in &scene.shapes.meshes {
+        for p in &m.positions {
+            for v in p.to_array() {
+                h.write(&v.to_bits().to_le_bytes());
+            }
+        }
+        for i in &m.indices {
+            h.write(&i.to_le_bytes());
+        }
+    }
+    h.write_str(&format!(
+        "{:?} {:?} lights {} materials {}",
+        scene.shapes.spheres,
+        scene.shapes.disks,
+        scene.lights.len(),
+        scene.materials.len()
+    ))
+    .write_str(&format!("{o:?}"))
+    .write_str(&format!(
+        "spp {} seed {} clamp {:?} sampler {:?} nan {:?} pass {}",
+        s.spp, s.seed, s.clamp, s.sampler, s.inject_nan, s.spp_per_pass
+    ));
     h.0
 }
 

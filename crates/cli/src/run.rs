@@ -203,7 +203,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             },
         );
     }
-    let hash = crate::resume::scene_hash(&scene_text, o, &settings);
+    let hash = crate::resume::scene_hash(&scene_text, &loaded.scene, o, &settings);
     let mut resume_state = None;
     let mut command: Vec<String> = std::env::args().skip(1).collect();
     let mut cwd = std::env::current_dir()

@@ -479,3 +479,40 @@ fn stats_report_rays_photons_memory_and_phases() {
         "{e}"
     );
 }
+
+#[test]
+fn checkpoint_of_an_edited_included_file_is_refused() {
+    let d = temp_dir("resume-include");
+    std::fs::write(
+        d.join("main.pbrt"),
+        "Film \"rgb\" \"integer xresolution\" [8] \"integer yresolution\" [8]\nLookAt 0 0 -3 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [5 5 5] \"point3 from\" [0 0 -2]\nInclude \"geo.pbrt\"\n",
+    )
+    .unwrap();
+    let geo = |x: &str| {
+        format!("Shape \"trianglemesh\" \"point3 P\" [-1 -1 0 1 -1 0 {x} 1 0] \"integer indices\" [0 1 2]\n")
+    };
+    std::fs::write(d.join("geo.pbrt"), geo("0")).unwrap();
+    let args = [
+        "render",
+        "main.pbrt",
+        "--integrator",
+        "path",
+        "--spp",
+        "2",
+        "-q",
+        "-o",
+        "m.exr",
+        "--checkpoint",
+        "ck",
+    ];
+    let o = lumis(&d, &args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // Unchanged: resumes (nothing left to do, the image is written again).
+    let o = lumis(&d, &[&args[..], &["--resume", "ck"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    // One vertex of the included mesh moved: refused.
+    std::fs::write(d.join("geo.pbrt"), geo("0.5")).unwrap();
+    let o = lumis(&d, &["render", "--resume", "ck"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("another scene"), "{}", stderr(&o));
+}
