@@ -516,3 +516,34 @@ fn checkpoint_of_an_edited_included_file_is_refused() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("another scene"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_time_only_render_resumes_with_a_new_budget() {
+    let d = temp_dir("resume-time");
+    let base = [
+        "render",
+        "--integrator",
+        "path",
+        "--resolution",
+        "16x16",
+        "-q",
+        "-o",
+        "t.exr",
+    ];
+    let o = lumis(
+        &d,
+        &[&base[..], &["--time", "0.3", "--checkpoint", "ck"]].concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (first, _) = exr_bits(&d.join("t.exr"));
+    let ck = lumis_render::checkpoint::Checkpoint::load(&d.join("ck")).unwrap();
+    assert_eq!((ck.spp_target, ck.state.spp_done), (0, first));
+    // Without a budget there is no end: refused with the way out.
+    let o = lumis(&d, &["render", "--resume", "ck"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("give --time"), "{}", stderr(&o));
+    let o = lumis(&d, &["render", "--resume", "ck", "--time", "0.3"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (more, _) = exr_bits(&d.join("t.exr"));
+    assert!(more > first, "{first} -> {more}");
+}
