@@ -254,3 +254,46 @@ fn bad_maps_are_located_errors() {
     );
     assert_eq!(l.scene.lights[0].le(Vec3::X), Rgb::splat(2.0));
 }
+
+/// Goniometric light: the image's pole is the light's +y axis (pbrt-v4's
+/// swap), intensity falls off as 1/d², `power` sets the luminous power.
+#[test]
+fn goniometric_light_orientation_and_power() {
+    use lumis_math::sampling::equal_area_square_to_sphere;
+    let n = 16;
+    let path = write_env("gonio.exr", n, n, |x, y| {
+        let d = equal_area_square_to_sphere(Vec2::new(
+            (x as f32 + 0.5) / n as f32,
+            (y as f32 + 0.5) / n as f32,
+        ));
+        Rgb::splat(if d.z > 0.8 { 3.0 } else { 0.5 })
+    });
+    let text = |extra: &str| {
+        env_scene(
+            &format!(
+                "AttributeBegin\nTranslate 0 0 1\nLightSource \"goniometric\" \"string filename\" \"{}\" \"rgb I\" [ 2 2 2 ] {extra}\nAttributeEnd",
+                path.display()
+            ),
+            "",
+            "",
+        )
+    };
+    let l = load(&text(""), &Default::default());
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+    let light = &l.scene.lights[0];
+    assert!(light.is_delta());
+    // Seen from +y of the light (the image's pole): 2 * 3 / d².
+    let s = light
+        .sample_li(&l.scene.shapes, Vec3::new(0.0, 2.0, 1.0), Vec2::ZERO)
+        .unwrap();
+    assert!((s.li.luminance() - 6.0 / 4.0).abs() < 1e-4, "{:?}", s.li);
+    assert!((s.wi - Vec3::NEG_Y).length() < 1e-6);
+    // Along +z of the light: off the pole.
+    let s = light
+        .sample_li(&l.scene.shapes, Vec3::new(0.0, 0.0, 3.0), Vec2::ZERO)
+        .unwrap();
+    assert!((s.li.luminance() - 1.0 / 4.0).abs() < 1e-4, "{:?}", s.li);
+    let l = load(&text("\"float power\" [ 10 ]"), &Default::default());
+    let p = l.scene.lights[0].power(&l.scene.shapes).luminance();
+    assert!((p - 10.0).abs() < 1e-3, "power {p}");
+}

@@ -13,7 +13,7 @@ use lumis_render::load::LoadedScene;
 use support::envmap::{lumpy, write_env};
 use support::*;
 
-const TESTS: usize = 15;
+const TESTS: usize = 16;
 
 fn scene(shape: &str, two_sided: bool) -> LoadedScene {
     let text = format!(
@@ -341,4 +341,34 @@ fn image_infinite_lights() {
             .unwrap();
         assert!((s.pdf_dir / pdf(-s.ray.d) - 1.0).abs() < 1e-3, "{label}");
     }
+}
+
+/// Goniometric light photons: directions by importance over its image.
+#[test]
+fn goniometric_emission_directions() {
+    let img = write_env("chi2-gonio.exr", 16, 16, lumpy(16, 16));
+    let l = load(
+        &format!(
+            "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nTranslate 1 2 3 Rotate 30 1 0 1\nLightSource \"goniometric\" \"string filename\" \"{}\"\n",
+            img.display()
+        ),
+        &Default::default(),
+    );
+    let Light::Goniometric(g) = &l.scene.lights[0] else {
+        panic!("goniometric light expected")
+    };
+    let out = chi2::run(
+        &Chi2Config {
+            samples: 400_000,
+            quad_points: 30,
+            ..Default::default()
+        },
+        |u, _| {
+            l.scene.lights[0]
+                .sample_le(&l.scene.shapes, u, u)
+                .map(|s| s.ray.d)
+        },
+        |d| g.pdf_dir(d),
+    );
+    assert!(out.passes(sidak_alpha(0.01, TESTS)), "{}", out.report());
 }

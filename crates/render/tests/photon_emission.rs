@@ -91,3 +91,20 @@ fn image_infinite_light_emits_its_power() {
         check(name, first_hit_flux(&world), PI as f64 * integral, 0.03);
     }
 }
+
+/// The goniometric light (a textured point emitter) inside an absorbing
+/// sphere: every photon lands once, carrying the power set by `power`.
+#[test]
+fn goniometric_light_emits_its_power() {
+    use support::envmap::{lumpy, write_env};
+    let path = write_env("ph-gonio.exr", 16, 16, lumpy(16, 16));
+    check(
+        "goniometric",
+        first_hit_flux(&format!(
+            "Rotate 40 1 1 0\nLightSource \"goniometric\" \"string filename\" \"{}\" \"float power\" [ 7 ]\nIdentity\n{ENCLOSURE}",
+            path.display()
+        )),
+        7.0,
+        1e-3,
+    );
+}

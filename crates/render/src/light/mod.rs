@@ -3,6 +3,7 @@
 
 pub mod area;
 pub mod distant;
+pub mod goniometric;
 pub mod image_infinite;
 pub mod infinite;
 pub mod point;
@@ -12,6 +13,7 @@ pub mod spot;
 
 pub use area::AreaLight;
 pub use distant::DistantLight;
+pub use goniometric::GoniometricLight;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight};
 pub use infinite::UniformInfiniteLight;
 pub use point::PointLight;
@@ -75,6 +77,7 @@ pub enum Light {
     Distant(DistantLight),
     Infinite(UniformInfiniteLight),
     Image(ImageInfiniteLight),
+    Goniometric(GoniometricLight),
 }
 
 impl Light {
@@ -96,13 +99,17 @@ impl Light {
 
     /// Point, spot and distant lights: a single position or direction.
     pub fn is_delta(&self) -> bool {
-        matches!(self, Light::Point(_) | Light::Spot(_) | Light::Distant(_))
+        matches!(
+            self,
+            Light::Point(_) | Light::Spot(_) | Light::Distant(_) | Light::Goniometric(_)
+        )
     }
 
     pub fn sample_li(&self, shapes: &Shapes, p_ref: Vec3, u: Vec2) -> Option<LiSample> {
         match self {
             Light::Area(l) => l.sample_li(shapes, p_ref, u),
             Light::Point(l) => l.sample_li(p_ref),
+            Light::Goniometric(l) => l.sample_li(p_ref),
             Light::Spot(l) => l.sample_li(p_ref),
             Light::Distant(l) => l.sample_li(p_ref),
             Light::Infinite(l) => l.sample_li(p_ref, u),
@@ -149,6 +156,7 @@ impl Light {
         match self {
             Light::Area(l) => l.sample_le(shapes, u1, u2),
             Light::Point(l) => l.sample_le(u1),
+            Light::Goniometric(l) => l.sample_le(u1),
             Light::Spot(l) => l.sample_le(u1),
             Light::Distant(l) => l.sample_le(u1),
             Light::Infinite(l) => l.sample_le(u1, u2),
@@ -161,6 +169,7 @@ impl Light {
         match self {
             Light::Area(l) => l.power(shapes),
             Light::Point(l) => l.power(),
+            Light::Goniometric(l) => l.power(),
             Light::Spot(l) => l.power(),
             Light::Distant(l) => l.power(),
             Light::Infinite(l) => l.power(),

@@ -9,7 +9,7 @@
 use super::spectrum::rgb_param;
 use super::Warnings;
 use crate::image_io::read_image;
-use crate::light::{EnvMapping, ImageInfiniteLight, Light};
+use crate::light::{EnvMapping, GoniometricLight, ImageInfiniteLight, Light};
 use lumis_math::sampling::{equal_area_square_to_sphere, latlong_to_sphere};
 use lumis_math::{Mat3, Rgb, Transform, Vec2, Vec3};
 use lumis_scene::{Diagnostic, Entity, SceneDesc};
@@ -46,17 +46,7 @@ pub fn build_image_light(
         }
         multiplier = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE);
     }
-    let path = desc.resolve_path(&file);
-    let img = read_image(&path).map_err(|err| Diagnostic::error(&file_loc, err.to_string()))?;
-    if img.data.iter().any(|v| !v.is_finite()) {
-        return Err(Diagnostic::error(
-            &file_loc,
-            format!(
-                "{}: the image has infinite or NaN pixels, unsuitable for a light",
-                path.display()
-            ),
-        ));
-    }
+    let (path, img) = read_light_image(desc, &file, &file_loc)?;
     let (width, height) = (img.width, img.height);
     let mapping = match explicit {
         Some(EnvMapping::EqualArea) | None if width == height => EnvMapping::EqualArea,
@@ -100,6 +90,89 @@ pub fn build_image_light(
     let to_world = rigid_part(light_to_world, &e.loc, w);
     Ok(Light::Image(ImageInfiniteLight::new(
         width, height, texels, mapping, to_world,
+    )))
+}
+
+/// Reads an image for a light: a located error if it cannot be read or has
+/// NaN or infinite pixels.
+fn read_light_image(
+    desc: &SceneDesc,
+    file: &str,
+    loc: &lumis_scene::Loc,
+) -> Result<(std::path::PathBuf, crate::image_io::RgbImage), Diagnostic> {
+    let path = desc.resolve_path(file);
+    let img = read_image(&path).map_err(|err| Diagnostic::error(loc, err.to_string()))?;
+    if img.data.iter().any(|v| !v.is_finite()) {
+        return Err(Diagnostic::error(
+            loc,
+            format!(
+                "{}: the image has infinite or NaN pixels, unsuitable for a light",
+                path.display()
+            ),
+        ));
+    }
+    Ok((path, img))
+}
+
+/// `LightSource "goniometric"`: `I`, `scale`, `power` and an equal-area
+/// square image (its RGB averaged, as pbrt-v4) giving the intensity's
+/// directional distribution; the light sits at the transform's origin with
+/// the image's pole along its `y` axis. Without `filename`: isotropic, warned.
+pub fn build_goniometric(
+    desc: &SceneDesc,
+    e: &Entity,
+    light_to_world: &Transform,
+    w: &mut Warnings,
+) -> Result<Light, Diagnostic> {
+    let p = &e.params;
+    let mut i = rgb_param(desc, p, "I")?.unwrap_or(Rgb::WHITE) * p.get_float("scale", 1.0)?;
+    let (res, values) = match p.get_opt_string("filename")? {
+        Some(file) => {
+            let loc = p.loc_of("filename").unwrap_or_else(|| e.loc.clone());
+            let (path, img) = read_light_image(desc, &file, &loc)?;
+            if img.width != img.height {
+                return Err(Diagnostic::error(
+                    &loc,
+                    format!(
+                        "{}: goniometric image is {}x{}; pbrt-v4 needs a square equal-area image",
+                        path.display(),
+                        img.width,
+                        img.height
+                    ),
+                ));
+            }
+            let v = img.data.chunks_exact(3).map(|c| (c[0] + c[1] + c[2]) / 3.0);
+            (img.width, v.collect())
+        }
+        None => {
+            w.push(Diagnostic::warning(
+                &e.loc,
+                "goniometric light without \"filename\": emitting like a point light",
+            ));
+            (1, vec![1.0])
+        }
+    };
+    let mean = values.iter().map(|&v: &f32| v.max(0.0) as f64).sum::<f64>() / values.len() as f64;
+    if p.has("power") {
+        let k = 4.0 * lumis_math::PI * i.luminance() * mean as f32;
+        if k > 0.0 {
+            i *= p.get_float("power", 0.0)? / k;
+        }
+    }
+    w.unused(
+        p,
+        "light \"goniometric\"",
+        &["I", "scale", "power", "filename"],
+    );
+    // pbrt-v4 swaps y and z: the image's +z pole is the light's +y axis.
+    let swap = Mat3::from_cols(Vec3::X, Vec3::Z, Vec3::Y);
+    let to_world = rigid_part(light_to_world, &e.loc, w) * swap;
+    Ok(Light::Goniometric(GoniometricLight::new(
+        light_to_world.point(Vec3::ZERO),
+        i,
+        res,
+        values,
+        to_world,
     )))
 }
 

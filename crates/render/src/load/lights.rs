@@ -128,6 +128,7 @@ pub fn build_lights(
                     scene_radius: 1.0,
                 })
             }
+            "goniometric" => super::envmap::build_goniometric(desc, e, &xf, w)?,
             other => {
                 for q in p.unused() {
                     q.mark_used();

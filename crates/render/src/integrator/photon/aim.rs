@@ -144,6 +144,7 @@ pub fn aimed_emission(
             emit(sp.p, sp.n, &|w| a.l(sp.n, w), sp.pdf)
         }
         Light::Point(p) => emit(p.pos, Vec3::ZERO, &|_| p.intensity, 1.0),
+        Light::Goniometric(g) => emit(g.pos, Vec3::ZERO, &|w| g.i(w), 1.0),
         Light::Spot(s) => emit(s.pos, Vec3::ZERO, &|w| s.i(w), 1.0),
         Light::Distant(_) | Light::Infinite(_) | Light::Image(_) => return None,
     })
