@@ -134,11 +134,28 @@ impl Saver {
         }
     }
 
+    /// Writes the final state (the film is moved out and back, not copied).
+    pub fn save_outcome(&mut self, out: &mut lumis_render::integrator::RenderOutcome) -> bool {
+        let mut st = template_state(out.film.bounds);
+        std::mem::swap(&mut st.film, &mut out.film);
+        let st = RenderState {
+            spp_done: out.spp,
+            alpha: out.alpha,
+            bad_samples: out.bad_samples,
+            first_bad: out.first_bad,
+            rays: out.total_rays,
+            elapsed: out.total_elapsed,
+            ..st
+        };
+        let ok = self.save(&st);
+        out.film = st.film;
+        ok
+    }
+
     /// Writes now; a failure is one warning (the render goes on).
     pub fn save(&mut self, s: &RenderState) -> bool {
-        self.template.state = s.clone();
         self.last = Instant::now();
-        match self.template.save(&self.path) {
+        match self.template.save_with(s, &self.path) {
             Ok(()) => true,
             Err(e) => {
                 if !self.warned {
@@ -148,5 +165,22 @@ impl Saver {
                 false
             }
         }
+    }
+}
+
+/// A placeholder state without pixels (the saver puts the real one in).
+pub fn template_state(crop: lumis_render::film::PixelBounds) -> RenderState {
+    RenderState {
+        film: lumis_render::film::Film {
+            full_resolution: (crop.x1, crop.y1),
+            bounds: crop,
+            pixels: Vec::new(),
+        },
+        spp_done: 0,
+        alpha: 1.0,
+        bad_samples: 0,
+        first_bad: None,
+        rays: 0,
+        elapsed: Duration::ZERO,
     }
 }

@@ -2,6 +2,7 @@
 
 use crate::args::{Cli, Command, RenderArgs};
 use crate::progress::Reporter;
+use crate::resume::template_state as resume_template_state;
 use anyhow::{bail, Context, Result};
 use lumis_math::SamplerKind;
 use lumis_render::checkpoint::Checkpoint;
@@ -168,40 +169,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
     };
     if a.verbose > 0 {
-        let sc = &loaded.scene;
-        let tris: usize = sc.shapes.meshes.iter().map(|m| m.indices.len() / 3).sum();
-        eprintln!(
-            "lumis: parsed in {:.3} s; built in {:.3} s: {} triangles in {} meshes, {} spheres, {} disks, {} lights, {:.1} MiB of geometry and BVH",
-            phases.parse.as_secs_f64(),
-            phases.build.as_secs_f64(),
-            tris,
-            sc.shapes.meshes.len(),
-            sc.shapes.spheres.len(),
-            sc.shapes.disks.len(),
-            sc.lights.len(),
-            sc.geometry_memory_bytes() as f64 / (1u64 << 20) as f64
-        );
-        eprintln!(
-            "lumis: {} {}x{} (crop {}x{}), {} spp, seed {}, sampler {:?}, maxdepth {}, threads {}",
-            o.integrator.kind.name(),
-            o.resolution.0,
-            o.resolution.1,
-            o.crop.width(),
-            o.crop.height(),
-            if settings.spp == 0 {
-                "time-limited".to_string()
-            } else {
-                settings.spp.to_string()
-            },
-            settings.seed,
-            settings.sampler,
-            o.integrator.max_depth,
-            if settings.threads == 0 {
-                rayon::current_num_threads()
-            } else {
-                settings.threads
-            },
-        );
+        crate::stats::print_setup(&loaded, &settings, &phases);
     }
     let hash = crate::resume::scene_hash(&scene_text, &loaded.scene, o, &settings);
     let mut resume_state = None;
@@ -228,28 +196,17 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         resume_state = Some(ck.state);
     }
     let mut saver = a.checkpoint.as_ref().map(|path| {
+        let template = Checkpoint {
+            lumis_version: env!("CARGO_PKG_VERSION").into(),
+            scene_hash: hash,
+            seed: a.seed,
+            spp_target: settings.spp,
+            command,
+            cwd,
+            state: resume_template_state(o.crop),
+        };
         let path = std::path::absolute(path).unwrap_or(path.clone());
-        crate::resume::Saver::new(
-            path,
-            Duration::from_secs_f64(a.checkpoint_every),
-            Checkpoint {
-                lumis_version: env!("CARGO_PKG_VERSION").into(),
-                scene_hash: hash,
-                seed: a.seed,
-                spp_target: settings.spp,
-                command,
-                cwd,
-                state: RenderState {
-                    film: lumis_render::film::Film::new((1, 1), o.crop),
-                    spp_done: 0,
-                    alpha: 1.0,
-                    bad_samples: 0,
-                    first_bad: None,
-                    rays: 0,
-                    elapsed: Duration::ZERO,
-                },
-            },
-        )
+        crate::resume::Saver::new(path, Duration::from_secs_f64(a.checkpoint_every), template)
     });
     let reporter = Reporter::new(a.quiet);
     install_interrupt_handler();
@@ -276,7 +233,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
             d.offer(|| scaled(&st.film));
         }
     };
-    let out = render_with(
+    let mut out = render_with(
         &loaded.scene,
         &o.integrator,
         &settings,
@@ -289,7 +246,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     );
     reporter.finish();
     if let Some(sv) = saver.as_mut() {
-        if sv.save(&out.state()) {
+        if sv.save_outcome(&mut out) {
             eprintln!("lumis: checkpoint {} at {} spp", sv.path.display(), out.spp);
         }
     }

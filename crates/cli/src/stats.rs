@@ -2,7 +2,7 @@
 //! photons stored per map, memory by category, time by phase.
 
 use lumis_render::film::Pixel;
-use lumis_render::integrator::RenderOutcome;
+use lumis_render::integrator::{RenderOutcome, RenderSettings};
 use lumis_render::load::LoadedScene;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
@@ -65,5 +65,44 @@ pub fn print(l: &LoadedScene, out: &RenderOutcome, ph: &Phases) {
         photon_time.as_secs_f64(),
         out.elapsed.saturating_sub(photon_time).as_secs_f64(),
         ph.write.as_secs_f64()
+    );
+}
+
+/// `-v`: parse and build times, the scene's size and the render settings.
+pub fn print_setup(l: &LoadedScene, settings: &RenderSettings, ph: &Phases) {
+    let o = &l.options;
+    let sc = &l.scene;
+    let tris: usize = sc.shapes.meshes.iter().map(|m| m.indices.len() / 3).sum();
+    eprintln!(
+        "lumis: parsed in {:.3} s; built in {:.3} s: {} triangles in {} meshes, {} spheres, {} disks, {} lights, {:.1} MiB of geometry and BVH",
+        ph.parse.as_secs_f64(),
+        ph.build.as_secs_f64(),
+        tris,
+        sc.shapes.meshes.len(),
+        sc.shapes.spheres.len(),
+        sc.shapes.disks.len(),
+        sc.lights.len(),
+        sc.geometry_memory_bytes() as f64 / (1u64 << 20) as f64
+    );
+    eprintln!(
+        "lumis: {} {}x{} (crop {}x{}), {} spp, seed {}, sampler {:?}, maxdepth {}, threads {}",
+        o.integrator.kind.name(),
+        o.resolution.0,
+        o.resolution.1,
+        o.crop.width(),
+        o.crop.height(),
+        if settings.spp == 0 {
+            "time-limited".to_string()
+        } else {
+            settings.spp.to_string()
+        },
+        settings.seed,
+        settings.sampler,
+        o.integrator.max_depth,
+        if settings.threads == 0 {
+            rayon::current_num_threads()
+        } else {
+            settings.threads
+        },
     );
 }

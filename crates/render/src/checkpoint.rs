@@ -80,7 +80,12 @@ impl Fnv {
 
 impl Checkpoint {
     pub fn encode(&self) -> Vec<u8> {
-        let st = &self.state;
+        self.encode_with(&self.state)
+    }
+
+    /// Encodes this checkpoint's header with `st` in place of its state
+    /// (saves a copy of the film while rendering).
+    pub fn encode_with(&self, st: &RenderState) -> Vec<u8> {
         let mut o = Vec::with_capacity(256 + st.film.pixels.len() * PIXEL_BYTES);
         o.extend_from_slice(MAGIC);
         o.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
@@ -235,13 +240,18 @@ impl Checkpoint {
     /// Writes to a temporary file in the same folder, then renames: a crash
     /// mid-write leaves the previous checkpoint intact.
     pub fn save(&self, path: &Path) -> Result<(), CheckpointError> {
+        self.save_with(&self.state, path)
+    }
+
+    /// [`Checkpoint::save`] with `state` in place of this checkpoint's state.
+    pub fn save_with(&self, state: &RenderState, path: &Path) -> Result<(), CheckpointError> {
         let io = |e| CheckpointError::Io(path.display().to_string(), e);
         let name = path
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_default();
         let tmp = path.with_file_name(format!(".{name}.tmp{}", std::process::id()));
-        if let Err(e) = std::fs::write(&tmp, self.encode()) {
+        if let Err(e) = std::fs::write(&tmp, self.encode_with(state)) {
             let _ = std::fs::remove_file(&tmp);
             return Err(io(e));
         }
