@@ -297,3 +297,30 @@ fn goniometric_light_orientation_and_power() {
     let p = l.scene.lights[0].power(&l.scene.shapes).luminance();
     assert!((p - 10.0).abs() < 1e-3, "power {p}");
 }
+
+/// pbrt-v3 files: `mapname` maps are latitude-longitude whatever their shape
+/// (the upgrade says so with `"string mapping" "latlong"`), and v3's `L`
+/// multiplies the map: the top row is the light's +z pole.
+#[test]
+fn pbrt_v3_mapname_is_a_latlong_map() {
+    for (name, w, h) in [("v3.exr", 64, 32), ("v3-square.exr", 32, 32)] {
+        let path = write_env(name, w, h, |_, y| {
+            Rgb::splat(if y == 0 { 5.0 } else { 1.0 })
+        });
+        let l = load(
+            &env_scene(
+                &format!(
+                    "LightSource \"infinite\" \"string mapname\" \"{}\" \"color L\" [ 2 2 2 ]",
+                    path.display()
+                ),
+                "",
+                "",
+            ),
+            &Default::default(),
+        );
+        assert!(l.warnings.is_empty(), "{name}: {:?}", l.warnings);
+        let light = &l.scene.lights[0];
+        assert_eq!(light.le(Vec3::Z), Rgb::splat(10.0), "{name}");
+        assert_eq!(light.le(Vec3::X), Rgb::splat(2.0), "{name}");
+    }
+}
