@@ -1,5 +1,6 @@
 //! Every scene in ../shared/scenes loads and renders at a tiny resolution
-//! with `path` (what is not supported yet is a warning, never a failure).
+//! with `path`, and warns about nothing the scene-loading issue says must
+//! work: every warning must be one of the explained exceptions below.
 
 mod support;
 
@@ -14,6 +15,49 @@ const SCENES: &[&str] = &[
     "pbrt-v4-killeroos/killeroo-coated-gold.pbrt",
     "pbrt-v4-killeroos/killeroo-moving.pbrt",
     "pbrt-caustic-glass/pbrt-v4-w3ntao/caustic-glass-v4.pbrt",
+    "pbrt-caustic-glass/pbrt-v3/f16-9a.pbrt",
+    "pbrt-caustic-glass/pbrt-v3/f16-11a.pbrt",
+    "pbrt-caustic-glass/pbrt-v3/glass.pbrt",
+];
+
+/// Warnings these scenes may give, and why each is not a failure.
+const EXPECTED: &[(&str, &str)] = &[
+    // Outside the scene-loading issue: other samplers and integrators, motion blur.
+    (
+        "sampler `halton` is not available",
+        "halton is not implemented",
+    ),
+    (
+        "integrator `bdpt` is not available",
+        "bdpt is not implemented",
+    ),
+    (
+        "integrator `sppm` is not available",
+        "sppm is not implemented",
+    ),
+    ("motion blur is not supported", "no motion blur"),
+    // pbrt-v4's own --upgrade reports these losses too.
+    (
+        "`Ks` is dropped converting",
+        "pbrt-v4 --upgrade warns the same",
+    ),
+    (
+        "has no \"numiterations\"",
+        "pbrt-v4 --upgrade warns the same",
+    ),
+    // Issue 3 materials and textures not landed yet (helper `mat`).
+    (
+        "material `coateddiffuse` is not supported yet",
+        "not landed yet",
+    ),
+    (
+        "material `coatedconductor` is not supported yet",
+        "not landed yet",
+    ),
+    (
+        "texture type `scale` is not supported yet",
+        "not landed yet",
+    ),
 ];
 
 #[test]
@@ -38,6 +82,13 @@ fn shared_scenes_load_and_render_tiny() {
             l.warnings.len(),
             l.scene.lights.len()
         );
+        for w in &l.warnings {
+            eprintln!("  {}", w.message);
+            assert!(
+                EXPECTED.iter().any(|(m, _)| w.message.contains(m)),
+                "{rel}: unexpected warning:\n{w}"
+            );
+        }
         assert!(mean.is_finite());
         assert!(!l.scene.lights.is_empty(), "{rel}: no lights built");
     }

@@ -6,6 +6,7 @@ pub mod disk;
 pub mod mesh;
 pub mod ray;
 pub mod sphere;
+pub mod subdiv;
 pub mod triangle;
 
 pub use aabb::Aabb;

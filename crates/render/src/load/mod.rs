@@ -5,6 +5,7 @@
 mod envmap;
 mod lights;
 mod materials;
+mod mesh;
 pub mod options;
 pub mod photon;
 mod shapes;

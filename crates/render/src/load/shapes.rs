@@ -1,12 +1,14 @@
 //! Shapes (trianglemesh, plymesh, sphere, disk) and their area lights.
 
 use super::materials::BuiltMaterials;
+use super::mesh::{make_mesh, push_mesh};
 use super::spectrum::rgb_param;
 use super::Warnings;
-use crate::geometry::{Cylinder, Disk, Prim, Sphere, TriangleMesh};
+use crate::geometry::subdiv::loop_subdivide;
+use crate::geometry::{Cylinder, Disk, Prim, Sphere};
 use crate::light::{AreaLight, Light};
 use crate::scene::{Instance, InstanceSet, PrimInfo, Shapes, NO_LIGHT};
-use lumis_math::{Rgb, Vec2, Vec3, PI};
+use lumis_math::{Rgb, Transform, PI};
 use lumis_scene::{Diagnostic, Entity, SceneDesc, ShapeDesc};
 
 pub fn build_shapes(
@@ -192,6 +194,37 @@ fn build_shape(
             let mesh = make_mesh(e, ply.positions, ply.normals, ply.uvs, indices, &xf, flip)?;
             push_mesh(shapes, mesh)
         }
+        "loopsubdiv" => {
+            let pos = p
+                .get_point3s("P")?
+                .ok_or_else(|| Diagnostic::error(&e.loc, "loopsubdiv needs \"point3 P\""))?;
+            let indices = p
+                .get_ints("indices")?
+                .ok_or_else(|| Diagnostic::error(&e.loc, "loopsubdiv needs \"integer indices\""))?;
+            let levels = p.get_int("levels", 3)?;
+            w.unused(p, "shape \"loopsubdiv\"", &["P", "indices", "levels"]);
+            if !(0..=12).contains(&levels) {
+                return Err(Diagnostic::error(
+                    &p.loc_of("levels").unwrap_or(e.loc.clone()),
+                    format!("loopsubdiv levels must be 0 to 12, found {levels}"),
+                ));
+            }
+            // Checked as a mesh first (index range, multiple of 3).
+            let mesh = make_mesh(e, pos, None, None, indices, &Transform::IDENTITY, false)?;
+            let sub = loop_subdivide(&mesh.positions, &mesh.indices, levels as u32)
+                .map_err(|m| Diagnostic::error(&e.loc, format!("loopsubdiv: {m}")))?;
+            let indices = sub.indices.iter().map(|&i| i as i32).collect();
+            let mesh = make_mesh(
+                e,
+                sub.positions,
+                Some(sub.normals),
+                None,
+                indices,
+                &xf,
+                flip,
+            )?;
+            push_mesh(shapes, mesh)
+        }
         "sphere" => {
             let radius = p.get_float("radius", 1.0)?;
             let zmin = p.get_float("zmin", -radius)?;
@@ -275,68 +308,4 @@ fn build_shape(
         }
     };
     Ok(prims)
-}
-
-fn make_mesh(
-    e: &Entity,
-    pos: Vec<Vec3>,
-    normals: Option<Vec<Vec3>>,
-    uvs: Option<Vec<Vec2>>,
-    indices: Vec<i32>,
-    xf: &lumis_math::Transform,
-    flip: bool,
-) -> Result<TriangleMesh, Diagnostic> {
-    if !indices.len().is_multiple_of(3) {
-        return Err(Diagnostic::error(
-            &e.loc,
-            format!("{} indices is not a multiple of 3", indices.len()),
-        ));
-    }
-    if let Some(&bad) = indices.iter().find(|&&i| i < 0 || i as usize >= pos.len()) {
-        return Err(Diagnostic::error(
-            &e.loc,
-            format!(
-                "vertex index {bad} is out of range (the mesh has {} vertices)",
-                pos.len()
-            ),
-        ));
-    }
-    if let Some(n) = &normals {
-        if n.len() != pos.len() {
-            return Err(Diagnostic::error(
-                &e.loc,
-                format!("{} normals for {} vertices", n.len(), pos.len()),
-            ));
-        }
-    }
-    if let Some(uv) = &uvs {
-        if uv.len() != pos.len() {
-            return Err(Diagnostic::error(
-                &e.loc,
-                format!("{} uvs for {} vertices", uv.len(), pos.len()),
-            ));
-        }
-    }
-    Ok(TriangleMesh {
-        positions: pos.iter().map(|&v| xf.point(v)).collect(),
-        normals: normals.map(|n| {
-            n.iter()
-                .map(|&v| xf.normal(v).normalize_or_zero())
-                .collect()
-        }),
-        uvs,
-        indices: indices.iter().map(|&i| i as u32).collect(),
-        flip_normals: flip,
-    })
-}
-
-/// Adds a mesh; degenerate (zero-area) triangles are left out.
-fn push_mesh(shapes: &mut Shapes, mesh: TriangleMesh) -> Vec<Prim> {
-    let id = shapes.meshes.len() as u32;
-    let prims = (0..mesh.triangle_count() as u32)
-        .filter(|&t| mesh.area(t) > 0.0)
-        .map(|tri| Prim::Triangle { mesh: id, tri })
-        .collect();
-    shapes.meshes.push(mesh);
-    prims
 }
