@@ -1,7 +1,7 @@
 //! Shapes (trianglemesh, plymesh, sphere, disk) and their area lights.
 
 use super::materials::BuiltMaterials;
-use super::mesh::{make_mesh, push_mesh};
+use super::mesh::{bilinear_triangles, make_mesh, push_mesh};
 use super::spectrum::rgb_param;
 use super::Warnings;
 use crate::geometry::subdiv::loop_subdivide;
@@ -192,6 +192,51 @@ fn build_shape(
             w.unused(p, "shape \"plymesh\"", &["filename"]);
             let indices = ply.indices.iter().map(|&i| i as i32).collect();
             let mesh = make_mesh(e, ply.positions, ply.normals, ply.uvs, indices, &xf, flip)?;
+            push_mesh(shapes, mesh)
+        }
+        "bilinearmesh" => {
+            let pos = p
+                .get_point3s("P")?
+                .ok_or_else(|| Diagnostic::error(&e.loc, "bilinearmesh needs \"point3 P\""))?;
+            let indices = match p.get_ints("indices")? {
+                Some(i) => i,
+                None if pos.len() == 4 => vec![0, 1, 2, 3],
+                None => return Err(Diagnostic::error(
+                    &e.loc,
+                    "bilinearmesh needs \"integer indices\" (only a single patch may omit them)",
+                )),
+            };
+            let uvs = p.get_point2s("uv")?;
+            let normals = p.get_normals("N")?;
+            p.mark_used("faceIndices");
+            w.unused(
+                p,
+                "shape \"bilinearmesh\"",
+                &["P", "indices", "uv", "N", "faceIndices"],
+            );
+            if !indices.len().is_multiple_of(4) {
+                return Err(Diagnostic::error(
+                    &e.loc,
+                    format!(
+                        "bilinearmesh: {} indices is not a multiple of 4",
+                        indices.len()
+                    ),
+                ));
+            }
+            // Checked as a mesh (index range, uv and normal counts) before use.
+            let tris: Vec<i32> = indices
+                .chunks(4)
+                .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
+                .collect();
+            let checked = make_mesh(e, pos, normals, uvs, tris, &Transform::IDENTITY, false)?;
+            let idx: Vec<u32> = indices.iter().map(|&i| i as u32).collect();
+            let (bp, buv, bn, bi) = bilinear_triangles(
+                &checked.positions,
+                &idx,
+                checked.uvs.as_deref(),
+                checked.normals.as_deref(),
+            );
+            let mesh = make_mesh(e, bp, bn, Some(buv), bi, &xf, flip)?;
             push_mesh(shapes, mesh)
         }
         "loopsubdiv" => {
