@@ -183,9 +183,27 @@ pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, D
     Ok(b.desc)
 }
 
+/// A scene file's text; gzip-compressed files (`.pbrt.gz`, as pbrt-v4
+/// reads) are decompressed.
+pub(crate) fn read_scene_text(path: &Path) -> Result<String, String> {
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    let bytes = if bytes.starts_with(&[0x1f, 0x8b]) {
+        use std::io::Read;
+        let mut out = Vec::new();
+        flate2::read::MultiGzDecoder::new(&bytes[..])
+            .take(4 << 30)
+            .read_to_end(&mut out)
+            .map_err(|e| format!("corrupt gzip data: {e}"))?;
+        out
+    } else {
+        bytes
+    };
+    String::from_utf8(bytes).map_err(|_| "the file is not UTF-8 text".to_string())
+}
+
 /// Parses a scene file; relative paths resolve against its folder.
 pub fn parse_file(path: &Path) -> Result<SceneDesc, Diagnostic> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = read_scene_text(path).map_err(|e| {
         Diagnostic::plain_error(format!("cannot read scene file `{}`: {e}", path.display()))
     })?;
     let base = match path.parent() {

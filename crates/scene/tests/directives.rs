@@ -482,3 +482,28 @@ fn import_does_not_leak_graphics_state() {
     assert!(matches!(d.shapes[3].material, MaterialRef::Index(2)));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn gzipped_scene_files_are_read() {
+    use std::io::Write;
+    let dir = std::env::temp_dir().join(format!("lumis-scene-gz-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let gz = |text: &str| {
+        let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+        e.write_all(text.as_bytes()).unwrap();
+        e.finish().unwrap()
+    };
+    std::fs::write(dir.join("part.pbrt.gz"), gz("Shape \"disk\"\n")).unwrap();
+    std::fs::write(
+        dir.join("main.pbrt.gz"),
+        gz("WorldBegin\nShape \"sphere\"\nInclude \"part.pbrt.gz\"\n"),
+    )
+    .unwrap();
+    let d = load_file(&dir.join("main.pbrt.gz")).unwrap();
+    let tys: Vec<&str> = d.shapes.iter().map(|s| s.entity.ty.as_str()).collect();
+    assert_eq!(tys, ["sphere", "disk"]);
+    std::fs::write(dir.join("bad.pbrt.gz"), &gz("WorldBegin")[..8]).unwrap();
+    let e = load_file(&dir.join("bad.pbrt.gz")).unwrap_err();
+    assert!(e.message.contains("gzip"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

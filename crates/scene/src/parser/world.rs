@@ -318,12 +318,6 @@ impl Builder {
         Self::no_args(dir, name, rest)?;
         let (file, loc) = &s[0];
 
-        if file.ends_with(".gz") {
-            return Err(Diagnostic::error(
-                loc,
-                "gzip-compressed scene files are not supported yet",
-            ));
-        }
         if self.depth >= MAX_INCLUDE_DEPTH {
             return Err(Diagnostic::error(
                 loc,
@@ -331,7 +325,7 @@ impl Builder {
             ));
         }
         let path = self.desc.resolve_path(file);
-        let text = std::fs::read_to_string(&path).map_err(|e| {
+        let text = super::read_scene_text(&path).map_err(|e| {
             Diagnostic::error(
                 loc,
                 format!("cannot read included file `{}`: {e}", path.display()),
