@@ -22,6 +22,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Compare an image with a reference: MSE, RMSE, relMSE, MAE, channel means.
     Compare(CompareArgs),
+    /// Run an equal-time study (scenes x settings x budgets x seeds) and write an HTML report.
+    Study(StudyArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -33,6 +35,27 @@ pub struct CompareArgs {
     /// Restrict to a region, as fractions x0,x1,y0,y1 (like --crop).
     #[arg(long, value_name = "x0,x1,y0,y1", value_parser = parse_crop)]
     pub mask: Option<[f32; 4]>,
+    /// Write a false-colour per-pixel error map (log scale, viridis, colour bar) to this PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub heatmap: Option<PathBuf>,
+    /// Heatmap error: `rel` (relMSE per pixel, (t-r)^2/(r^2+0.01)) or `abs` (|t-r|), channel mean.
+    #[arg(long, value_name = "rel|abs", default_value = "rel")]
+    pub heatmap_error: String,
+    /// Heatmap range lo,hi (default: four decades below the largest error).
+    #[arg(long, value_name = "lo,hi", value_parser = parse_range)]
+    pub heatmap_range: Option<(f64, f64)>,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct StudyArgs {
+    /// Study configuration (TOML; see studies/caustics.toml).
+    pub config: PathBuf,
+    /// Report folder (default: `<config stem>-report` next to the config).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print one line per run only.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 #[derive(Args, Debug, Default, Clone)]
@@ -154,6 +177,20 @@ fn parse_triple(s: &str) -> Result<(u32, u32, u32), String> {
     }
 }
 
+pub fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected lo,hi, found `{s}`"))?;
+    let (a, b): (f64, f64) = match (a.trim().parse(), b.trim().parse()) {
+        (Ok(a), Ok(b)) => (a, b),
+        _ => return Err(format!("expected two numbers lo,hi, found `{s}`")),
+    };
+    if !(a > 0.0 && b > a && b.is_finite()) {
+        return Err(format!("need 0 < lo < hi (a log scale), found `{s}`"));
+    }
+    Ok((a, b))
+}
+
 fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
@@ -198,5 +235,8 @@ mod tests {
         assert!(parse_resolution("0x5").is_err());
         assert_eq!(parse_crop("0,0.5,0.25,1"), Ok([0.0, 0.5, 0.25, 1.0]));
         assert!(parse_crop("0.5,0.2,0,1").is_err());
+        assert_eq!(parse_range("1e-4,10"), Ok((1e-4, 10.0)));
+        assert!(parse_range("0,1").is_err());
+        assert!(parse_range("2,1").is_err());
     }
 }

@@ -3,10 +3,12 @@
 mod args;
 mod bench;
 mod display;
+mod heatmap;
 mod progress;
 mod resume;
 mod run;
 mod stats;
+mod study;
 
 use clap::Parser;
 use std::process::ExitCode;

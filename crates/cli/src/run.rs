@@ -19,11 +19,11 @@ use std::time::{Duration, Instant};
 pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// Set by the first SIGINT/SIGTERM: no further passes start.
-static CANCEL: AtomicBool = AtomicBool::new(false);
+pub(crate) static CANCEL: AtomicBool = AtomicBool::new(false);
 
 /// First Ctrl-C (or SIGTERM): finish the current pass, write the image, exit
 /// with [`EXIT_INTERRUPTED`]. Second: exit at once.
-fn install_interrupt_handler() {
+pub(crate) fn install_interrupt_handler() {
     let _ = ctrlc::set_handler(|| {
         if CANCEL.swap(true, Ordering::SeqCst) {
             eprintln!("\nlumis: interrupted twice: exiting without writing");
@@ -39,12 +39,16 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Render(a)) => render_cmd(*a),
         Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
         Some(Command::Compare(a)) => compare_cmd(a),
+        Some(Command::Study(a)) => crate::study::run(a),
     }
 }
 
 fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
     use lumis_render::image_io::read_image;
-    use lumis_render::metrics::compare;
+    use lumis_render::metrics::{compare, PixelError};
+    let kind = PixelError::from_name(&a.heatmap_error).ok_or_else(|| {
+        anyhow::anyhow!("unknown --heatmap-error `{}` (rel or abs)", a.heatmap_error)
+    })?;
     let t = read_image(&a.test)?;
     let r = read_image(&a.reference)?;
     let region = a
@@ -62,10 +66,21 @@ fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
     );
     let q = m.ratio();
     println!("ratio    {:.4} {:.4} {:.4}", q[0], q[1], q[2]);
+    if let Some(path) = &a.heatmap {
+        let (lo, hi) = crate::heatmap::write_heatmap(path, &t, &r, kind, a.heatmap_range)?;
+        println!(
+            "heatmap  {} ({} error per pixel, log scale {lo:.2e} .. {hi:.2e})",
+            path.display(),
+            match kind {
+                PixelError::Relative => "relative squared",
+                PixelError::Absolute => "absolute",
+            }
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }
 
-fn overrides(a: &RenderArgs) -> Result<BuildOverrides> {
+pub(crate) fn overrides(a: &RenderArgs) -> Result<BuildOverrides> {
     let sampler = match a.sampler.as_deref() {
         None => None,
         Some("sobol") => Some(SamplerKind::Sobol),

@@ -185,6 +185,33 @@ fn write_png(path: &Path, img: &RgbImage, exposure: f32) -> Result<(), ImageErro
     .map_err(|e| io_err(path, e))
 }
 
+/// Writes 8-bit sRGB bytes (`width * height * 3`, row-major) as a PNG,
+/// atomically (temporary file, then rename): for false-colour images.
+pub fn write_srgb8_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    bytes: &[u8],
+) -> Result<(), ImageError> {
+    let tmp = temp_path(path);
+    image::save_buffer_with_format(
+        &tmp,
+        bytes,
+        width,
+        height,
+        image::ColorType::Rgb8,
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io_err(path, e)
+    })?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io_err(path, e)
+    })
+}
+
 /// Reads EXR, PFM or PNG (8-bit sRGB decoded to linear).
 pub fn read_image(path: &Path) -> Result<RgbImage, ImageError> {
     let format = ImageFormat::from_path(path)?;

@@ -84,6 +84,60 @@ pub fn compare(
     })
 }
 
+/// Which per-pixel error a heatmap shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelError {
+    /// Mean over channels of `(t - r)^2 / (r^2 + 0.01)`: relMSE per pixel.
+    Relative,
+    /// Mean over channels of `|t - r|`: MAE per pixel.
+    Absolute,
+}
+
+impl PixelError {
+    pub fn from_name(s: &str) -> Option<PixelError> {
+        match s {
+            "rel" | "relative" => Some(PixelError::Relative),
+            "abs" | "absolute" => Some(PixelError::Absolute),
+            _ => None,
+        }
+    }
+
+    /// Short label for a colour bar.
+    pub fn label(self) -> &'static str {
+        match self {
+            PixelError::Relative => "relse",
+            PixelError::Absolute => "abs",
+        }
+    }
+}
+
+/// Per-pixel error of `test` against `reference` (row-major, whole image):
+/// the per-pixel terms whose mean over a region is `rel_mse` or `mae`.
+/// Errors as [`compare`]: size mismatch or a non-finite pixel.
+pub fn pixel_errors(
+    test: &RgbImage,
+    reference: &RgbImage,
+    kind: PixelError,
+) -> Result<Vec<f64>, String> {
+    compare(test, reference, None)?;
+    Ok(test
+        .data
+        .chunks_exact(3)
+        .zip(reference.data.chunks_exact(3))
+        .map(|(t, r)| {
+            let mut e = 0.0;
+            for c in 0..3 {
+                let (tv, rv) = (t[c] as f64, r[c] as f64);
+                e += match kind {
+                    PixelError::Relative => (tv - rv) * (tv - rv) / (rv * rv + 0.01),
+                    PixelError::Absolute => (tv - rv).abs(),
+                };
+            }
+            e / 3.0
+        })
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,6 +173,49 @@ mod tests {
         )
         .unwrap();
         assert!((m.mse - 1.0 / 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn channel_means_ratio_and_rmse_by_hand() {
+        // One pixel, reference (2, 4, 0.5), test (1, 4, 1.5).
+        let r = RgbImage::new(1, 1, vec![2.0, 4.0, 0.5]);
+        let t = RgbImage::new(1, 1, vec![1.0, 4.0, 1.5]);
+        let m = compare(&t, &r, None).unwrap();
+        // Squared differences 1, 0, 1: MSE 2/3, RMSE sqrt(2/3), MAE 2/3.
+        assert!((m.mse - 2.0 / 3.0).abs() < 1e-12);
+        assert!((m.rmse - (2.0f64 / 3.0).sqrt()).abs() < 1e-12);
+        assert!((m.mae - 2.0 / 3.0).abs() < 1e-12);
+        // relMSE: 1/(4+0.01) + 0 + 1/(0.25+0.01), over 3.
+        assert!((m.rel_mse - (1.0 / 4.01 + 1.0 / 0.26) / 3.0).abs() < 1e-12);
+        assert_eq!(m.ratio(), [0.5, 1.0, 3.0]);
+        assert_eq!(m.pixels, 1);
+        // Identical images: every error is exactly zero, ratio one.
+        let z = compare(&r, &r, None).unwrap();
+        assert_eq!((z.mse, z.rel_mse, z.mae), (0.0, 0.0, 0.0));
+        assert_eq!(z.ratio(), [1.0; 3]);
+    }
+
+    #[test]
+    fn pixel_errors_by_hand_and_their_means_are_the_metrics() {
+        let r = img(&[1.0, 1.0, 1.0, 0.0, 0.0, 0.0]);
+        let t = img(&[2.0, 1.0, 1.0, 0.0, 0.0, 0.5]);
+        let rel = pixel_errors(&t, &r, PixelError::Relative).unwrap();
+        assert!((rel[0] - (1.0 / 1.01) / 3.0).abs() < 1e-12);
+        assert!((rel[1] - 25.0 / 3.0).abs() < 1e-9);
+        let abs = pixel_errors(&t, &r, PixelError::Absolute).unwrap();
+        assert!((abs[0] - 1.0 / 3.0).abs() < 1e-12);
+        assert!((abs[1] - 0.5 / 3.0).abs() < 1e-12);
+        let m = compare(&t, &r, None).unwrap();
+        assert!(((rel[0] + rel[1]) / 2.0 - m.rel_mse).abs() < 1e-12);
+        assert!(((abs[0] + abs[1]) / 2.0 - m.mae).abs() < 1e-12);
+        let bad = img(&[f32::INFINITY, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert!(pixel_errors(&t, &bad, PixelError::Absolute).is_err());
+        assert_eq!(PixelError::from_name("rel"), Some(PixelError::Relative));
+        assert_eq!(
+            PixelError::from_name("absolute"),
+            Some(PixelError::Absolute)
+        );
+        assert_eq!(PixelError::from_name("x"), None);
     }
 
     #[test]

@@ -1,0 +1,341 @@
+//! `lumis study CONFIG.toml`: renders a matrix of scenes x settings x budgets
+//! x seeds in-process, compares each run with its scene's reference, and
+//! writes images, heatmaps, metrics and a self-contained HTML report.
+//! Each finished run is recorded atomically; a rerun skips finished runs.
+
+mod config;
+mod plot;
+mod report;
+mod store;
+
+use crate::args::{Cli, Command, StudyArgs};
+use crate::run::{install_interrupt_handler, overrides, CANCEL, EXIT_INTERRUPTED};
+use anyhow::{anyhow, Result};
+use clap::Parser;
+use config::Config;
+use lumis_render::image_io::{read_image, write_image, RgbImage};
+use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
+use lumis_render::load::LoadedScene;
+use lumis_render::load::{load_path, options::crop_bounds};
+use lumis_render::metrics::{compare, PixelError};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::Ordering;
+use std::time::Duration;
+use std::time::Instant;
+use store::{RunResult, Store};
+
+/// Exposure (stops) that maps the reference's 98th-percentile luminance to 1,
+/// rounded to half stops.
+fn auto_exposure(r: &RgbImage) -> f32 {
+    let mut l: Vec<f32> = r
+        .data
+        .chunks_exact(3)
+        .map(|p| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2])
+        .collect();
+    l.sort_by(f32::total_cmp);
+    let p = l[((l.len() - 1) as f64 * 0.98) as usize];
+    if p > 0.0 && p.is_finite() {
+        ((-p.log2() * 2.0).round() / 2.0).clamp(-12.0, 12.0)
+    } else {
+        0.0
+    }
+}
+
+/// `YYYY-MM-DD HH:MM:SS UTC` from the system clock (civil-from-days).
+fn utc_now() -> String {
+    let s = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs() as i64)
+        .unwrap_or(0);
+    let (days, rem) = (s.div_euclid(86400), s.rem_euclid(86400));
+    let z = days + 719468;
+    let era = z.div_euclid(146097);
+    let doe = z - era * 146097;
+    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02} {:02}:{:02}:{:02} UTC",
+        rem / 3600,
+        rem / 60 % 60,
+        rem % 60
+    )
+}
+
+fn loadavg() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!("{cpu}, {cores} hardware threads, {}", std::env::consts::OS)
+}
+
+fn rel(out: &Path, p: &Path) -> String {
+    p.strip_prefix(out)
+        .unwrap_or(p)
+        .to_string_lossy()
+        .replace('\\', "/")
+}
+
+pub fn run(a: StudyArgs) -> Result<ExitCode> {
+    let c = Config::load(&a.config)?;
+    let out = a.out.clone().unwrap_or_else(|| {
+        let stem = a.config.file_stem().unwrap_or_default().to_string_lossy();
+        a.config
+            .parent()
+            .unwrap_or(Path::new("."))
+            .join(format!("{stem}-report"))
+    });
+    let store = Store::new(&out)?;
+    // References: read, checked, tone-mapped once; every run of a scene uses its exposure.
+    let mut refs = Vec::new();
+    let mut infos = Vec::new();
+    for s in &c.scenes {
+        let r = read_image(&s.reference)
+            .map_err(|e| anyhow!("scene `{}`: reading its reference: {e}", s.name))?;
+        compare(&r, &r, None).map_err(|e| anyhow!("scene `{}`: reference {e}", s.name))?;
+        let exposure = s.exposure.unwrap_or_else(|| auto_exposure(&r));
+        std::fs::create_dir_all(out.join(&s.name))?;
+        let png = out.join(&s.name).join("reference.png");
+        write_image(&png, &r, exposure)?;
+        infos.push(report::SceneInfo {
+            reference_png: rel(&out, &png),
+            reference_spp: r.meta("lumis:spp").map(str::to_string),
+            reference_command: r.meta("lumis:command").map(str::to_string),
+            exposure,
+        });
+        refs.push(r);
+    }
+    install_interrupt_handler();
+    let ctx_start = (loadavg(), utc_now());
+    let runs = c.runs();
+    let mut results: Vec<RunResult> = Vec::new();
+    let mut planned: Vec<(String, bool)> = runs.iter().map(|r| (r.id(&c), false)).collect();
+    let (mut done_here, mut secs_here) = (0usize, 0.0f64);
+    let mut interrupted = false;
+    for (k, run) in runs.iter().enumerate() {
+        let id = run.id(&c);
+        let args = c.render_args(run);
+        let tag = format!("[{}/{}] {id}", k + 1, runs.len());
+        if let Some(r) = store.finished(&id, &args) {
+            if !a.quiet {
+                eprintln!("{tag}: finished before, skipped");
+            }
+            results.push(r);
+            planned[k].1 = true;
+            continue;
+        }
+        if CANCEL.load(Ordering::SeqCst) {
+            interrupted = true;
+            break;
+        }
+        let t0 = Instant::now();
+        let r = render_run(
+            &c,
+            run,
+            &id,
+            &args,
+            &out,
+            &refs[run.scene],
+            &infos[run.scene],
+        )
+        .map_err(|e| anyhow!("run {id} (lumis render {}): {e:#}", args.join(" ")))?;
+        let Some(r) = r else {
+            interrupted = true;
+            break;
+        };
+        store.save(&r)?;
+        planned[k].1 = true;
+        store.write_manifest(&c.title, &planned)?;
+        done_here += 1;
+        secs_here += t0.elapsed().as_secs_f64();
+        let left = planned.iter().filter(|p| !p.1).count();
+        eprintln!(
+            "{tag}: {} spp in {:.2} s, relMSE {:.3e}, MSE {:.3e} (about {:.0} s left)",
+            r.spp,
+            r.seconds,
+            r.relmse,
+            r.mse,
+            secs_here / done_here as f64 * left as f64
+        );
+        results.push(r);
+    }
+    store.write_manifest(&c.title, &planned)?;
+    store.write_tables(&results)?;
+    let ctx = report::Context {
+        machine: machine(),
+        load_before: ctx_start.0,
+        load_after: loadavg(),
+        started: ctx_start.1,
+        finished: utc_now(),
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        planned: runs.len(),
+    };
+    let page = report::html(&c, &results, &infos, &ctx);
+    // The files the page shows (for copying a report without every run's images).
+    let mut files = vec![
+        "index.html".to_string(),
+        "metrics.csv".into(),
+        "metrics.json".into(),
+    ];
+    files.extend(infos.iter().map(|i| i.reference_png.clone()));
+    files.extend(report::shown_files(&c, &results));
+    store::write_atomic(
+        &out.join("report-files.txt"),
+        (files.join("\n") + "\n").as_bytes(),
+    )?;
+    store::write_atomic(&out.join("index.html"), page.as_bytes())?;
+    eprintln!(
+        "lumis: study: {} of {} runs finished -> {}",
+        results.len(),
+        runs.len(),
+        out.join("index.html").display()
+    );
+    if interrupted {
+        eprintln!("lumis: interrupted: finished runs are kept; rerun the same command to resume");
+        return Ok(ExitCode::from(EXIT_INTERRUPTED));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Renders a loaded scene with `a`'s budget, seed, threads and clamp: the
+/// image (imaging scale applied; spp, integrator, seed and scene in its
+/// metadata) and the outcome. Stops early when [`CANCEL`] is set.
+fn render_loaded(
+    loaded: &LoadedScene,
+    a: &crate::args::RenderArgs,
+    scene_name: String,
+) -> (RgbImage, RenderOutcome) {
+    let o = &loaded.options;
+    // With only a time budget, the sample count is unbounded.
+    let spp = if a.time.is_some() && a.spp.is_none() {
+        0
+    } else {
+        o.spp
+    };
+    let settings = RenderSettings {
+        time_limit: a.time.map(Duration::from_secs_f64),
+        clamp: a.clamp,
+        ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
+    };
+    let out = render(&loaded.scene, &o.integrator, &settings, &|_| {}, &CANCEL);
+    let mut data = out.film.mean_image();
+    if o.imaging_scale != 1.0 {
+        data.iter_mut().for_each(|v| *v *= o.imaging_scale);
+    }
+    let mut img = RgbImage::new(out.film.width(), out.film.height(), data);
+    img.metadata = vec![
+        ("lumis:spp".into(), out.spp.to_string()),
+        ("lumis:integrator".into(), o.integrator.kind.name().into()),
+        ("lumis:seed".into(), a.seed.to_string()),
+        ("lumis:scene".into(), scene_name),
+    ];
+    (img, out)
+}
+
+/// Renders one run and writes its EXR, PNG and heatmap; None if interrupted
+/// (nothing of the run is kept then).
+fn render_run(
+    c: &Config,
+    run: &config::Run,
+    id: &str,
+    args: &[String],
+    out: &Path,
+    reference: &RgbImage,
+    info: &report::SceneInfo,
+) -> Result<Option<RunResult>> {
+    let argv = ["lumis", "render", "-q"]
+        .into_iter()
+        .map(String::from)
+        .chain(args.iter().cloned());
+    let cli = Cli::try_parse_from(argv).map_err(|e| anyhow!("bad flags: {e}"))?;
+    let Some(Command::Render(ra)) = cli.command else {
+        unreachable!("parsed as render")
+    };
+    let scene = &c.scenes[run.scene];
+    let loaded = load_path(&scene.file, &overrides(&ra)?).map_err(|d| anyhow!("{d}"))?;
+    if run.seed == c.seeds[0] && run.budget == c.budgets()[0] {
+        for w in &loaded.warnings {
+            eprintln!("{w}");
+        }
+    }
+    let (mut img, o) = render_loaded(&loaded, &ra, scene.file.display().to_string());
+    if o.interrupted {
+        return Ok(None);
+    }
+    img.metadata.push((
+        "lumis:study-run".into(),
+        format!("{id}: {}", args.join(" ")),
+    ));
+    let region = scene.mask.map(|m| crop_bounds((img.width, img.height), m));
+    let m = compare(&img, reference, region).map_err(|e| anyhow!("against the reference: {e}"))?;
+    let dir: PathBuf = out.join(&scene.name);
+    let (exr, png, heat) = (
+        dir.join(format!("{id}.exr")),
+        dir.join(format!("{id}.png")),
+        dir.join(format!("{id}.err.png")),
+    );
+    write_image(&exr, &img, 0.0)?;
+    write_image(&png, &img, info.exposure)?;
+    let kind = PixelError::from_name(&c.heatmap).expect("checked");
+    let range = (c.heatmap_range[0], c.heatmap_range[1]);
+    crate::heatmap::write_heatmap(&heat, &img, reference, kind, Some(range))?;
+    Ok(Some(RunResult {
+        id: id.to_string(),
+        scene: scene.name.clone(),
+        setting: c.settings[run.setting].name.clone(),
+        budget: run.budget.label(),
+        seed: run.seed,
+        args: args.to_vec(),
+        spp: o.spp,
+        seconds: o.elapsed.as_secs_f64(),
+        photon_seconds: o
+            .photon_stats
+            .map(|p| (p.trace_time + p.build_time + p.radiance_time).as_secs_f64()),
+        mse: m.mse,
+        rmse: m.rmse,
+        relmse: m.rel_mse,
+        mae: m.mae,
+        ratio: m.ratio(),
+        exr: rel(out, &exr),
+        png: rel(out, &png),
+        heatmap: rel(out, &heat),
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exposure_maps_the_98th_percentile_to_one() {
+        let mut d = vec![0.25f32; 300];
+        d[297..].fill(100.0); // one bright pixel in 100: above the 98th percentile
+        let img = RgbImage::new(100, 1, d);
+        assert_eq!(auto_exposure(&img), 2.0);
+        assert_eq!(auto_exposure(&RgbImage::new(1, 1, vec![0.0; 3])), 0.0);
+    }
+
+    #[test]
+    fn utc_clock_format() {
+        let s = utc_now();
+        assert_eq!(s.len(), "2026-11-22 03:04:05 UTC".len());
+        assert!(s.starts_with("20") && s.ends_with(" UTC"));
+    }
+}
