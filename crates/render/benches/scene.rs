@@ -10,8 +10,9 @@ use lumis_math::{Rgb, Transform};
 use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays};
 use lumis_render::camera::Camera;
 use lumis_render::geometry::{Prim, Ray};
-use lumis_render::material::{DiffuseMaterial, Material};
+use lumis_render::material::{DiffuseMaterial, MaterialKind};
 use lumis_render::scene::{PrimInfo, Scene, Shapes, NO_LIGHT};
+use lumis_render::texture::TexRgb;
 
 const N_RAYS: usize = 100_000;
 
@@ -36,9 +37,10 @@ fn bench(c: &mut Criterion) {
     let scene = Scene::new(
         shapes,
         prims,
-        vec![Material::Diffuse(DiffuseMaterial {
-            reflectance: Rgb::splat(0.5),
-        })],
+        vec![MaterialKind::Diffuse(DiffuseMaterial {
+            reflectance: TexRgb::Const(Rgb::splat(0.5)),
+        })
+        .into()],
         vec![],
         Camera::perspective(Transform::IDENTITY, (4, 4), 60.0, 0.0, 1.0),
     );

@@ -14,3 +14,4 @@ pub mod load;
 pub mod material;
 pub mod metrics;
 pub mod scene;
+pub mod texture;

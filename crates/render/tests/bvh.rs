@@ -6,8 +6,9 @@ use lumis_render::accel::Bvh;
 use lumis_render::camera::Camera;
 use lumis_render::geometry::triangle::{intersect_triangle, RayShear};
 use lumis_render::geometry::{Aabb, Disk, Prim, Ray, Sphere, TriangleMesh};
-use lumis_render::material::{DiffuseMaterial, Material};
+use lumis_render::material::{DiffuseMaterial, MaterialKind};
 use lumis_render::scene::{PrimInfo, Scene, Shapes, NO_LIGHT};
+use lumis_render::texture::TexRgb;
 use proptest::prelude::*;
 
 type Tri = [Vec3; 3];
@@ -439,9 +440,10 @@ fn mixed_scene(seed: u64, n_tris: usize) -> (Scene, Vec<Shape>) {
     let scene = Scene::new(
         shapes,
         prims,
-        vec![Material::Diffuse(DiffuseMaterial {
-            reflectance: Rgb::splat(0.5),
-        })],
+        vec![MaterialKind::Diffuse(DiffuseMaterial {
+            reflectance: TexRgb::Const(Rgb::splat(0.5)),
+        })
+        .into()],
         vec![],
         Camera::perspective(Transform::IDENTITY, (4, 4), 60.0, 0.0, 1.0),
     );

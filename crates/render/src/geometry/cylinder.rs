@@ -119,7 +119,12 @@ impl Cylinder {
             p: self.object_to_world.point(po),
             ng: n,
             ns: n,
-            dpdu: self.object_to_world.vector(Vec3::new(-po.y, po.x, 0.0)),
+            dpdu: self
+                .object_to_world
+                .vector(self.phi_max * Vec3::new(-po.y, po.x, 0.0)),
+            dpdv: self
+                .object_to_world
+                .vector(Vec3::new(0.0, 0.0, self.zmax - self.zmin)),
             uv: Vec2::new(
                 phi / self.phi_max,
                 (po.z - self.zmin) / (self.zmax - self.zmin).max(1e-30),

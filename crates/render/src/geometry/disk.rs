@@ -88,17 +88,22 @@ impl Disk {
         let phi = po.y.atan2(po.x);
         let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
         let v = (self.radius - r) / (self.radius - self.inner_radius).max(1e-12);
-        let dpdu = self.object_to_world.vector(Vec3::new(-po.y, po.x, 0.0));
-        let dpdu = if dpdu.length_squared() > 1e-20 {
-            dpdu
-        } else {
-            lumis_math::Frame::from_normal(n).s
-        };
+        let mut dpdu = self
+            .object_to_world
+            .vector(2.0 * PI * Vec3::new(-po.y, po.x, 0.0));
+        let mut dpdv = self.object_to_world.vector(
+            Vec3::new(po.x, po.y, 0.0) * ((self.inner_radius - self.radius) / r.max(1e-12)),
+        );
+        if dpdu.length_squared() < 1e-20 || dpdv.length_squared() < 1e-20 {
+            let f = lumis_math::Frame::from_normal(n);
+            (dpdu, dpdv) = (f.s, f.t);
+        }
         SurfaceGeom {
             p,
             ng: n,
             ns: n,
             dpdu,
+            dpdv,
             uv: Vec2::new(phi / (2.0 * PI), v),
         }
     }

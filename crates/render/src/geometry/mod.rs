@@ -49,6 +49,9 @@ pub struct SurfaceGeom {
     pub ng: Vec3,
     /// Shading normal, on the same side as `ng`.
     pub ns: Vec3,
+    /// Partial derivatives of the position with respect to the surface's
+    /// (u, v) parameters, as pbrt defines them (not normalised).
     pub dpdu: Vec3,
+    pub dpdv: Vec3,
     pub uv: Vec2,
 }

@@ -138,24 +138,34 @@ impl Sphere {
         }
         let phi = phi_of(po);
         let theta = (po.z / self.radius).clamp(-1.0, 1.0).acos();
+        // pbrt's parameterisation (v = 0 at zmin), for cut spheres too.
         let (tz0, tz1) = (
             (self.zmin / self.radius).clamp(-1.0, 1.0).acos(),
             (self.zmax / self.radius).clamp(-1.0, 1.0).acos(),
         );
-        let uv = if self.is_partial() {
-            Vec2::new(phi / self.phi_max, (theta - tz0) / (tz1 - tz0))
+        let phi_max = if self.is_partial() {
+            self.phi_max
         } else {
-            Vec2::new(phi / (2.0 * PI), theta / PI)
+            2.0 * PI
         };
-        let mut dpdu = self.object_to_world.vector(Vec3::new(-po.y, po.x, 0.0));
-        if dpdu.length_squared() < 1e-20 {
-            dpdu = lumis_math::Frame::from_normal(n).s;
+        let uv = Vec2::new(phi / phi_max, (theta - tz0) / (tz1 - tz0));
+        let mut dpdu = self
+            .object_to_world
+            .vector(phi_max * Vec3::new(-po.y, po.x, 0.0));
+        let (sin_phi, cos_phi) = phi.sin_cos();
+        let mut dpdv = self.object_to_world.vector(
+            (tz1 - tz0) * Vec3::new(po.z * cos_phi, po.z * sin_phi, -self.radius * theta.sin()),
+        );
+        if dpdu.length_squared() < 1e-20 || dpdv.length_squared() < 1e-20 {
+            let f = lumis_math::Frame::from_normal(n);
+            (dpdu, dpdv) = (f.s, f.t);
         }
         SurfaceGeom {
             p,
             ng: n,
             ns: n,
             dpdu,
+            dpdv,
             uv,
         }
     }

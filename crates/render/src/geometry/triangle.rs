@@ -118,12 +118,14 @@ pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> Sur
     let (duv02, duv12) = (uv0 - uv2, uv1 - uv2);
     let (dp02, dp12) = (p0 - p2, p1 - p2);
     let det = duv02.x * duv12.y - duv02.y * duv12.x;
-    let mut dpdu = Vec3::ZERO;
+    let (mut dpdu, mut dpdv) = (Vec3::ZERO, Vec3::ZERO);
     if det.abs() > 1e-12 {
         dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+        dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
     }
-    if dpdu.length_squared() == 0.0 || !dpdu.is_finite() {
-        dpdu = Frame::from_normal(ng).s;
+    if dpdu.cross(dpdv).length_squared() == 0.0 || !dpdu.is_finite() || !dpdv.is_finite() {
+        let f = Frame::from_normal(ng);
+        (dpdu, dpdv) = (f.s, f.t);
     }
     let mut ns = ng;
     if let Some(n) = &mesh.normals {
@@ -149,6 +151,7 @@ pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> Sur
         ng,
         ns,
         dpdu,
+        dpdv,
         uv,
     }
 }

@@ -28,7 +28,7 @@ pub fn li(
             return l + beta * escaped_mis(scene, &ray, ray.o, 0.0, true);
         };
         l += beta * emitted_mis(scene, &hit, &ray, ray.o, 0.0, true);
-        let bsdf = scene.materials[hit.material as usize].surface_bsdf(&hit.geom);
+        let bsdf = scene.bsdf(&hit, -ray.d);
         let wo = -ray.d;
         let uc = sampler.get_1d();
         let u = sampler.get_2d();

@@ -45,7 +45,7 @@ pub fn li(
             break;
         }
         depth += 1;
-        let bsdf = scene.materials[hit.material as usize].surface_bsdf(&hit.geom);
+        let bsdf = scene.bsdf(&hit, -ray.d);
         let wo = -ray.d;
         if !bsdf.is_delta() {
             l += beta * sample_direct(scene, &hit, &bsdf, wo, sampler, rays);

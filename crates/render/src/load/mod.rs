@@ -5,11 +5,13 @@
 mod envmap;
 mod lights;
 mod materials;
+mod materials_layered;
 mod mesh;
 pub mod options;
 pub mod photon;
 mod shapes;
 mod spectrum;
+mod textures;
 
 pub use options::RenderOptions;
 
@@ -101,7 +103,8 @@ pub fn build_scene(
     }
     let options = options::build_options(desc, overrides, &mut w)?;
     let camera = options::build_camera(desc, &options, &mut w)?;
-    let materials = materials::build_materials(desc, &mut w)?;
+    let mut tex = textures::TexBuilder::new(desc, &mut w)?;
+    let materials = materials::build_materials(desc, &mut tex, &mut w)?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
     let (prims, instances) =
@@ -113,7 +116,14 @@ pub fn build_scene(
                 .into_warning(),
         );
     }
-    let scene = Scene::with_instances(
+    // Interface surfaces only bound media, which lumis does not render yet:
+    // they cannot change the image, so they are left out (emitters stay).
+    let mut prims = prims;
+    prims.retain(|p| {
+        p.light != crate::scene::NO_LIGHT
+            || !materials.materials[p.material as usize].is_interface()
+    });
+    let mut scene = Scene::with_instances(
         shapes,
         prims,
         instances,
@@ -121,6 +131,9 @@ pub fn build_scene(
         lights,
         camera,
     );
+    let mut textures = tex.textures;
+    textures.footprint = crate::texture::Footprint::new(&scene.camera, options.spp);
+    scene.textures = textures;
     Ok(LoadedScene {
         scene,
         options,

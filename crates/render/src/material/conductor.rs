@@ -1,30 +1,35 @@
+use super::Roughness;
 use crate::bsdf::{Bsdf, Conductor};
-use crate::geometry::SurfaceGeom;
-use lumis_math::Rgb;
+use crate::texture::{TexCtx, TexRgb, Textures};
 
 #[derive(Clone, Debug)]
 pub enum ConductorSpec {
     /// Complex index of refraction per channel.
-    EtaK { eta: Rgb, k: Rgb },
+    EtaK { eta: TexRgb, k: TexRgb },
     /// Normal-incidence reflectance (pbrt-v4's `reflectance` parameter).
-    Reflectance(Rgb),
+    Reflectance(TexRgb),
+}
+
+impl ConductorSpec {
+    pub fn bsdf(&self, t: &Textures, c: &TexCtx, ax: f32, ay: f32) -> Conductor {
+        match self {
+            ConductorSpec::EtaK { eta, k } => Conductor::new(eta.eval(t, c), k.eval(t, c), ax, ay),
+            ConductorSpec::Reflectance(r) => {
+                Conductor::from_reflectance(super::clamp01(r.eval(t, c)), ax, ay)
+            }
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
 pub struct ConductorMaterial {
     pub spec: ConductorSpec,
-    /// Trowbridge-Reitz alphas (already remapped from roughness if asked).
-    pub alpha_x: f32,
-    pub alpha_y: f32,
+    pub roughness: Roughness,
 }
 
 impl ConductorMaterial {
-    pub fn bsdf(&self, _g: &SurfaceGeom) -> Bsdf {
-        Bsdf::Conductor(match self.spec {
-            ConductorSpec::EtaK { eta, k } => Conductor::new(eta, k, self.alpha_x, self.alpha_y),
-            ConductorSpec::Reflectance(r) => {
-                Conductor::from_reflectance(r, self.alpha_x, self.alpha_y)
-            }
-        })
+    pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
+        let (ax, ay) = self.roughness.alphas(t, c);
+        Bsdf::Conductor(self.spec.bsdf(t, c, ax, ay))
     }
 }

@@ -1,15 +1,16 @@
+use super::Roughness;
 use crate::bsdf::{Bsdf, Dielectric};
-use crate::geometry::SurfaceGeom;
+use crate::texture::{TexCtx, Textures};
 
 #[derive(Clone, Debug)]
 pub struct DielectricMaterial {
     pub eta: f32,
-    pub alpha_x: f32,
-    pub alpha_y: f32,
+    pub roughness: Roughness,
 }
 
 impl DielectricMaterial {
-    pub fn bsdf(&self, _g: &SurfaceGeom) -> Bsdf {
-        Bsdf::Dielectric(Dielectric::new(self.eta, self.alpha_x, self.alpha_y))
+    pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
+        let (ax, ay) = self.roughness.alphas(t, c);
+        Bsdf::Dielectric(Dielectric::new(self.eta, ax, ay))
     }
 }

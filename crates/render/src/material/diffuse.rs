@@ -1,14 +1,13 @@
 use crate::bsdf::{Bsdf, Diffuse};
-use crate::geometry::SurfaceGeom;
-use lumis_math::Rgb;
+use crate::texture::{TexCtx, TexRgb, Textures};
 
 #[derive(Clone, Debug)]
 pub struct DiffuseMaterial {
-    pub reflectance: Rgb,
+    pub reflectance: TexRgb,
 }
 
 impl DiffuseMaterial {
-    pub fn bsdf(&self, _g: &SurfaceGeom) -> Bsdf {
-        Bsdf::Diffuse(Diffuse::new(self.reflectance))
+    pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
+        Bsdf::Diffuse(Diffuse::new(super::clamp01(self.reflectance.eval(t, c))))
     }
 }

@@ -1,57 +1,115 @@
 //! Materials: what a surface is made of, turned into a BSDF at a hit.
 //!
 //! To add a material: a file here with its struct and `bsdf()`, a variant in
-//! [`Material`], and its parameters in `load/materials.rs`.
+//! [`MaterialKind`], and its parameters in `load/materials.rs`. Parameters that
+//! pbrt-v4 allows to be textures are [`TexRgb`](crate::texture::TexRgb) /
+//! [`TexFloat`](crate::texture::TexFloat).
 
 pub mod conductor;
 mod dielectric;
 mod diffuse;
+mod interface;
+mod mix;
 mod phong;
+mod roughness;
+pub mod shading;
 pub mod spectra;
 
 pub use conductor::{ConductorMaterial, ConductorSpec};
 pub use dielectric::DielectricMaterial;
 pub use diffuse::DiffuseMaterial;
+pub use interface::InterfaceMaterial;
+pub use mix::MixMaterial;
 pub use phong::PhongMaterial;
+pub use roughness::Roughness;
+pub use shading::Shading;
 
 use crate::bsdf::{Bsdf, SurfaceBsdf};
 use crate::geometry::SurfaceGeom;
-use lumis_math::Frame;
+use crate::texture::{TexCtx, Textures};
+use lumis_math::{Frame, Rgb, Vec3};
 
 #[derive(Clone, Debug)]
-pub enum Material {
+pub enum MaterialKind {
     Diffuse(DiffuseMaterial),
     Conductor(ConductorMaterial),
     Dielectric(DielectricMaterial),
     Phong(PhongMaterial),
+    Mix(MixMaterial),
+    Interface(InterfaceMaterial),
+}
+
+/// A material and how it bends the shading normal (bump or normal map).
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub kind: MaterialKind,
+    pub shading: Shading,
+}
+
+impl From<MaterialKind> for Material {
+    fn from(kind: MaterialKind) -> Self {
+        Material {
+            kind,
+            shading: Shading::Smooth,
+        }
+    }
 }
 
 impl Material {
-    pub fn bsdf(&self, geom: &SurfaceGeom) -> Bsdf {
-        match self {
-            Material::Diffuse(m) => m.bsdf(geom),
-            Material::Conductor(m) => m.bsdf(geom),
-            Material::Dielectric(m) => m.bsdf(geom),
-            Material::Phong(m) => m.bsdf(geom),
+    /// The BSDF in the local shading frame for a texture context.
+    pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
+        match &self.kind {
+            MaterialKind::Diffuse(m) => m.bsdf(t, c),
+            MaterialKind::Conductor(m) => m.bsdf(t, c),
+            MaterialKind::Dielectric(m) => m.bsdf(t, c),
+            MaterialKind::Phong(m) => m.bsdf(t, c),
+            MaterialKind::Interface(m) => m.bsdf(),
+            // Resolved by `surface_bsdf` before a BSDF is asked for.
+            MaterialKind::Mix(_) => Bsdf::Diffuse(crate::bsdf::Diffuse::new(Rgb::BLACK)),
         }
     }
 
     /// Perfectly specular everywhere (smooth glass or mirror): a target for
     /// aimed caustic photons.
     pub fn is_specular(&self) -> bool {
-        match self {
-            Material::Dielectric(m) => m.alpha_x.max(m.alpha_y) < 1e-3,
-            Material::Conductor(m) => m.alpha_x.max(m.alpha_y) < 1e-3,
+        let smooth = |r: &Roughness| r.const_max_alpha().is_some_and(|a| a < 1e-3);
+        match &self.kind {
+            MaterialKind::Dielectric(m) => smooth(&m.roughness),
+            MaterialKind::Conductor(m) => smooth(&m.roughness),
             _ => false,
         }
     }
 
-    /// The BSDF in world space at a hit, with the shading frame.
-    pub fn surface_bsdf(&self, geom: &SurfaceGeom) -> SurfaceBsdf {
-        SurfaceBsdf::new(
-            Frame::from_normal_tangent(geom.ns, geom.dpdu),
-            geom.ng,
-            self.bsdf(geom),
-        )
+    pub fn is_interface(&self) -> bool {
+        matches!(self.kind, MaterialKind::Interface(_))
     }
+}
+
+/// The BSDF in world space at a hit with material `id`: mix materials are
+/// resolved (deterministically per point and direction `wo`), textures
+/// evaluated over the hit's footprint, bump and normal maps applied.
+pub fn surface_bsdf(
+    materials: &[Material],
+    t: &Textures,
+    mut id: u32,
+    geom: &SurfaceGeom,
+    wo: Vec3,
+) -> SurfaceBsdf {
+    let mut c = t.footprint.context(geom);
+    // Mixes of mixes: bounded, as a cycle cannot be built by the loader.
+    for _ in 0..64 {
+        match &materials[id as usize].kind {
+            MaterialKind::Mix(m) => id = m.choose(t, &c, wo),
+            _ => break,
+        }
+    }
+    let m = &materials[id as usize];
+    let (ns, dpdu) = m.shading.apply(t, geom, &c);
+    c.n = ns;
+    SurfaceBsdf::new(Frame::from_normal_tangent(ns, dpdu), geom.ng, m.bsdf(t, &c))
+}
+
+/// Reflectances are clamped to [0, 1] as pbrt-v4's albedo spectra are.
+pub(crate) fn clamp01(c: Rgb) -> Rgb {
+    c.map(|v| v.clamp(0.0, 1.0))
 }

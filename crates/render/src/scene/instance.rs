@@ -128,6 +128,7 @@ impl Instances {
             ng: xf.normal(g.ng).normalize(),
             ns: xf.normal(g.ns).normalize(),
             dpdu: xf.vector(g.dpdu),
+            dpdv: xf.vector(g.dpdv),
             uv: g.uv,
         };
         (obj.prims[h.hit.slot as usize], geom)

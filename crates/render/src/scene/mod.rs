@@ -7,10 +7,13 @@ mod level;
 pub use instance::{transform_box, Instance, InstanceHit, InstanceSet, Instances};
 pub use level::{LevelHit, PrimBvh};
 
+use crate::bsdf::SurfaceBsdf;
 use crate::camera::Camera;
 use crate::geometry::{Aabb, Cylinder, Disk, Prim, Ray, Sphere, SurfaceGeom, TriangleMesh};
 use crate::light::{Light, LightSampler};
 use crate::material::Material;
+use crate::texture::Textures;
+use lumis_math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Big shape data, referenced by `u32` ids.
@@ -121,6 +124,8 @@ pub struct Scene {
     /// Instanced objects; empty for scenes without `ObjectInstance`.
     pub instances: Instances,
     pub materials: Vec<Material>,
+    /// Textures and images the materials refer to.
+    pub textures: Textures,
     pub lights: Vec<Light>,
     pub light_sampler: LightSampler,
     /// Lights seen by rays that escape (infinite, environment).
@@ -179,6 +184,7 @@ impl Scene {
             world,
             instances,
             materials,
+            textures: Textures::default(),
             lights,
             light_sampler,
             infinite_lights,
@@ -246,6 +252,11 @@ impl Scene {
     }
 
     #[inline]
+    /// The BSDF at a hit seen from direction `wo` (pointing away from the surface).
+    pub fn bsdf(&self, hit: &Hit, wo: Vec3) -> SurfaceBsdf {
+        crate::material::surface_bsdf(&self.materials, &self.textures, hit.material, &hit.geom, wo)
+    }
+
     pub fn count_rays(&self, n: u64) {
         self.counters.rays.fetch_add(n, Ordering::Relaxed);
     }

@@ -53,7 +53,7 @@ pub fn li(
             return l + beta * escaped_mis_n(scene, &ray, ray.o, 0.0, 0.0, true);
         };
         l += beta * emitted_mis_n(scene, &hit, &ray, ray.o, 0.0, 0.0, true);
-        let bsdf = scene.materials[hit.material as usize].surface_bsdf(&hit.geom);
+        let bsdf = scene.bsdf(&hit, -ray.d);
         let wo = -ray.d;
         if bsdf.is_delta() {
             let (uc, u) = (sampler.get_1d(), sampler.get_2d());
@@ -210,7 +210,7 @@ fn trace_gather(
                 le * caustic_gather_weight(ctx, g, le.luminance(), flux)
             };
         }
-        let bsdf = scene.materials[h.material as usize].surface_bsdf(&h.geom);
+        let bsdf = scene.bsdf(&h, -ray.d);
         let wo = -ray.d;
         if bsdf.is_delta() {
             let (uc, u) = (sampler.get_1d(), sampler.get_2d());

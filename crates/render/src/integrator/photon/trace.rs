@@ -129,7 +129,7 @@ fn trace_one(
         let Some(hit) = scene.intersect(&ray) else {
             return;
         };
-        let bsdf = scene.materials[hit.material as usize].surface_bsdf(&hit.geom);
+        let bsdf = scene.bsdf(&hit, -ray.d);
         let wo = -ray.d;
         if !bsdf.is_delta() {
             let n = if hit.geom.ng.dot(wo) < 0.0 {

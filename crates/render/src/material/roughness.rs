@@ -1,0 +1,39 @@
+use crate::texture::{TexCtx, TexFloat, Textures};
+
+/// pbrt-v4's `uroughness` / `vroughness` (or `roughness`) and `remaproughness`:
+/// Trowbridge-Reitz alphas, possibly textured.
+#[derive(Clone, Copy, Debug)]
+pub struct Roughness {
+    pub u: TexFloat,
+    pub v: TexFloat,
+    /// Map roughness to alpha by `sqrt` (pbrt-v4's `RoughnessToAlpha`).
+    pub remap: bool,
+}
+
+impl Roughness {
+    pub const SMOOTH: Roughness = Roughness {
+        u: TexFloat::Const(0.0),
+        v: TexFloat::Const(0.0),
+        remap: false,
+    };
+
+    fn alpha(&self, r: f32) -> f32 {
+        if self.remap {
+            r.max(0.0).sqrt()
+        } else {
+            r.max(0.0)
+        }
+    }
+
+    pub fn alphas(&self, t: &Textures, c: &TexCtx) -> (f32, f32) {
+        (self.alpha(self.u.eval(t, c)), self.alpha(self.v.eval(t, c)))
+    }
+
+    /// The larger alpha when both are constants.
+    pub fn const_max_alpha(&self) -> Option<f32> {
+        Some(
+            self.alpha(self.u.constant()?)
+                .max(self.alpha(self.v.constant()?)),
+        )
+    }
+}
