@@ -45,17 +45,13 @@ const EXPECTED: &[(&str, &str)] = &[
         "has no \"numiterations\"",
         "pbrt-v4 --upgrade warns the same",
     ),
-    // Issue 3 materials and textures not landed yet (helper `mat`).
+    // Issue 3 materials not implemented yet (layered BSDF).
     (
         "material `coateddiffuse` is not supported yet",
         "not landed yet",
     ),
     (
         "material `coatedconductor` is not supported yet",
-        "not landed yet",
-    ),
-    (
-        "texture type `scale` is not supported yet",
         "not landed yet",
     ),
 ];
