@@ -1,4 +1,5 @@
-//! Bitterli's Cornell box (pbrt-v4 file) against Tungsten's converged render.
+//! Bitterli's Cornell box and Veach's MIS scene (pbrt-v4 files) against
+//! Tungsten's converged renders.
 
 mod support;
 
@@ -6,19 +7,41 @@ use lumis_render::image_io::read_image;
 use lumis_render::load::{load_path, BuildOverrides};
 use support::*;
 
-const RES: u32 = 64;
 const BLOCK: u32 = 8;
 
 #[test]
 fn cornell_box_matches_tungsten() {
-    let Some(scene) = shared_scene("bitterli-cornell-box/scene-v4.pbrt") else {
+    matches_tungsten(
+        "bitterli-cornell-box/scene-v4.pbrt",
+        "bitterli-cornell-box/tungsten/TungstenRender.exr",
+        (64, 64),
+        256,
+    );
+}
+
+/// Open (issue 3): at 80x45 and 256 spp lumis is 62% brighter than Tungsten
+/// in the red channel (1.092 vs 0.673); not yet explained (the scene is only
+/// diffuse, rough conductors and spherical area lights).
+#[test]
+#[ignore = "open: lumis is 62% brighter than Tungsten's veach-mis render"]
+fn veach_mis_matches_tungsten() {
+    matches_tungsten(
+        "bitterli-veach-mis/scene-v4.pbrt",
+        "bitterli-veach-mis/TungstenRender.exr",
+        (80, 45),
+        256,
+    );
+}
+
+/// Renders `scene` at `res` and compares it with Tungsten's render
+/// box-downsampled to `res`: channel means within 2% and 8x8-block errors.
+fn matches_tungsten(scene: &str, reference: &str, res: (u32, u32), spp: u32) {
+    let (Some(scene), Some(reference)) = (shared_scene(scene), shared_scene(reference)) else {
         return;
     };
-    let Some(reference) = shared_scene("bitterli-cornell-box/tungsten/TungstenRender.exr") else {
-        return;
-    };
+    let (rx, ry) = res;
     let ov = BuildOverrides {
-        resolution: Some((RES, RES)),
+        resolution: Some(res),
         ..Default::default()
     };
     let l = load_path(&scene, &ov).unwrap_or_else(|e| panic!("{e}"));
@@ -29,17 +52,20 @@ fn cornell_box_matches_tungsten() {
         "unexpected warnings: {:?}",
         l.warnings
     );
-    let spp = 256;
     let out = render_loaded(&l, spp, 1, 0);
     let r = read_image(&reference).unwrap();
-    assert_eq!(r.width % RES, 0);
-    let f = (r.width / RES) as usize;
+    assert_eq!(r.width % rx, 0);
+    let f = (r.width / rx) as usize;
+    let n = (rx * ry) as usize;
     // Box-downsample the reference to our resolution.
-    let mut refd = vec![[0f64; 3]; (RES * RES) as usize];
+    let mut refd = vec![[0f64; 3]; n];
     for y in 0..r.height as usize {
+        if y / f >= ry as usize {
+            break;
+        }
         for x in 0..r.width as usize {
             let p = r.pixel(x as u32, y as u32);
-            let d = &mut refd[(y / f) * RES as usize + x / f];
+            let d = &mut refd[(y / f) * rx as usize + x / f];
             for c in 0..3 {
                 d[c] += p[c] as f64 / (f * f) as f64;
             }
@@ -47,8 +73,8 @@ fn cornell_box_matches_tungsten() {
     }
     // 1. Mean per channel within 2%.
     for c in 0..3 {
-        let ours: f64 = out.film.pixels.iter().map(|p| p.mean[c]).sum::<f64>() / (RES * RES) as f64;
-        let theirs: f64 = refd.iter().map(|p| p[c]).sum::<f64>() / (RES * RES) as f64;
+        let ours: f64 = out.film.pixels.iter().map(|p| p.mean[c]).sum::<f64>() / n as f64;
+        let theirs: f64 = refd.iter().map(|p| p[c]).sum::<f64>() / n as f64;
         let rel = ours / theirs - 1.0;
         eprintln!(
             "channel {c}: lumis {ours:.5} tungsten {theirs:.5} ({:+.2}%)",
@@ -61,14 +87,14 @@ fn cornell_box_matches_tungsten() {
         );
     }
     // 2. Block RMSE: 8x8-pixel blocks, relative error of the block mean (luminance-like average).
-    let nb = (RES / BLOCK) as usize;
+    let (nbx, nby) = ((rx / BLOCK) as usize, (ry / BLOCK) as usize);
     let (mut sq, mut noise_sq) = (0.0f64, 0.0f64);
-    for by in 0..nb {
-        for bx in 0..nb {
+    for by in 0..nby {
+        for bx in 0..nbx {
             let (mut a, mut b, mut var) = (0.0f64, 0.0f64, 0.0f64);
             for y in by * BLOCK as usize..(by + 1) * BLOCK as usize {
                 for x in bx * BLOCK as usize..(bx + 1) * BLOCK as usize {
-                    let i = y * RES as usize + x;
+                    let i = y * rx as usize + x;
                     let p = &out.film.pixels[i];
                     a += (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0;
                     b += (refd[i][0] + refd[i][1] + refd[i][2]) / 3.0;
@@ -81,8 +107,8 @@ fn cornell_box_matches_tungsten() {
             noise_sq += var / (b * b).max(1e-6);
         }
     }
-    let rmse = (sq / (nb * nb) as f64).sqrt();
-    let noise = (noise_sq / (nb * nb) as f64).sqrt();
+    let rmse = (sq / (nbx * nby) as f64).sqrt();
+    let noise = (noise_sq / (nbx * nby) as f64).sqrt();
     eprintln!("block relative RMSE {rmse:.4} (our noise alone {noise:.4})");
     // Bound: three times our Monte Carlo noise plus 1.5% systematic per block.
     // Tungsten's render is converged but made with its own filter (and 1024^2
