@@ -1,30 +1,14 @@
 //! End-to-end tests of the `lumis` binary: outputs, summary, and bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn lumis(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumis"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run lumis")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lumis-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).to_string()
-}
+use common::*;
+use std::path::Path;
+use std::time::Duration;
 
 #[test]
 fn default_scene_writes_exr_and_png_and_a_summary() {
-    let d = temp_dir("default");
+    let d = temp_dir("cli", "default");
     let o = lumis(&d, &["render", "--resolution", "24x24", "--spp", "2"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(d.join("lumis.exr").exists() && d.join("lumis.png").exists());
@@ -41,7 +25,7 @@ fn default_scene_writes_exr_and_png_and_a_summary() {
 
 #[test]
 fn output_format_follows_extension_and_crop_selects_pixels() {
-    let d = temp_dir("pfm");
+    let d = temp_dir("cli", "pfm");
     let o = lumis(
         &d,
         &[
@@ -66,7 +50,7 @@ fn output_format_follows_extension_and_crop_selects_pixels() {
 
 #[test]
 fn time_budget_stops_the_render() {
-    let d = temp_dir("time");
+    let d = temp_dir("cli", "time");
     let o = lumis(
         &d,
         &[
@@ -87,7 +71,7 @@ fn time_budget_stops_the_render() {
 
 #[test]
 fn syntax_error_has_location_and_caret_and_writes_nothing() {
-    let d = temp_dir("syntax");
+    let d = temp_dir("cli", "syntax");
     // A wrong value type, and an unclosed bracket.
     let cases = [
         ("type.pbrt", "Film \"rgb\"\nCamera \"perspective\" \"float fov\" [ 45 ]\nWorldBegin\nShape \"sphere\" \"float radius\" [ \"big\" ]\n", "type.pbrt:4:33"),
@@ -107,7 +91,7 @@ fn syntax_error_has_location_and_caret_and_writes_nothing() {
 
 #[test]
 fn missing_scene_and_missing_include_are_named() {
-    let d = temp_dir("missing");
+    let d = temp_dir("cli", "missing");
     let o = lumis(&d, &["render", "nope.pbrt"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("nope.pbrt"));
@@ -128,7 +112,7 @@ fn missing_scene_and_missing_include_are_named() {
 
 #[test]
 fn unknown_parameter_is_a_located_warning_with_suggestion() {
-    let d = temp_dir("unknown");
+    let d = temp_dir("cli", "unknown");
     let scene = "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\nCamera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [ 1 1 1 ]\nMaterial \"diffuse\" \"rgb reflectanse\" [ 0.5 0.5 0.5 ]\nShape \"sphere\"\n";
     std::fs::write(d.join("warn.pbrt"), scene).unwrap();
     let o = lumis(&d, &["render", "warn.pbrt", "--spp", "1", "-o", "w.exr"]);
@@ -142,7 +126,7 @@ fn unknown_parameter_is_a_located_warning_with_suggestion() {
 
 #[test]
 fn bad_arguments_are_refused() {
-    let d = temp_dir("args");
+    let d = temp_dir("cli", "args");
     for args in [
         &["render", "--resolution", "0x5"][..],
         &["render", "--integrator", "nope", "--spp", "1"],
@@ -156,9 +140,11 @@ fn bad_arguments_are_refused() {
 
 #[test]
 fn interrupt_writes_the_image_so_far_with_its_sample_count() {
-    let d = temp_dir("sigint");
-    let child = Command::new(env!("CARGO_BIN_EXE_lumis"))
-        .args([
+    let d = temp_dir("cli", "sigint");
+    // Let a few passes finish, then SIGINT.
+    let out = lumis_interrupted(
+        &d,
+        &[
             "render",
             "--integrator",
             "path",
@@ -169,19 +155,9 @@ fn interrupt_writes_the_image_so_far_with_its_sample_count() {
             "-o",
             "int.exr",
             "-q",
-        ])
-        .current_dir(&d)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    // Let a few passes finish, then SIGINT.
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let out = child.wait_with_output().unwrap();
+        ],
+        Duration::from_millis(1500),
+    );
     let e = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{e}");
     let img = lumis_render::image_io::read_image(&d.join("int.exr")).unwrap();
@@ -193,7 +169,7 @@ fn interrupt_writes_the_image_so_far_with_its_sample_count() {
 #[test]
 fn compare_prints_metrics_and_refuses_mismatched_sizes() {
     use lumis_render::image_io::{write_image, RgbImage};
-    let d = temp_dir("compare");
+    let d = temp_dir("cli", "compare");
     write_image(
         &d.join("r.pfm"),
         &RgbImage::new(2, 1, vec![1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
@@ -227,7 +203,7 @@ fn compare_prints_metrics_and_refuses_mismatched_sizes() {
 
 #[test]
 fn photon_budget_beyond_memory_is_refused_naming_the_parameter() {
-    let d = temp_dir("photonmem");
+    let d = temp_dir("cli", "photonmem");
     let o = lumis(
         &d,
         &[
@@ -256,7 +232,7 @@ fn exr_bits(p: &Path) -> (u32, Vec<u32>) {
 
 #[test]
 fn checkpoint_then_resume_equals_an_uninterrupted_render() {
-    let d = temp_dir("resume");
+    let d = temp_dir("cli", "resume");
     let common = [
         "render",
         "--integrator",
@@ -323,9 +299,10 @@ fn checkpoint_then_resume_equals_an_uninterrupted_render() {
 
 #[test]
 fn interrupt_writes_a_checkpoint_that_resumes() {
-    let d = temp_dir("sigint-ck");
-    let child = Command::new(env!("CARGO_BIN_EXE_lumis"))
-        .args([
+    let d = temp_dir("cli", "sigint-ck");
+    let out = lumis_interrupted(
+        &d,
+        &[
             "render",
             "--integrator",
             "path",
@@ -340,18 +317,9 @@ fn interrupt_writes_a_checkpoint_that_resumes() {
             "ck",
             "--checkpoint-every",
             "1000",
-        ])
-        .current_dir(&d)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1000));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let out = child.wait_with_output().unwrap();
+        ],
+        Duration::from_millis(1000),
+    );
     assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
     let (spp, _) = exr_bits(&d.join("int.exr"));
     let ck = lumis_render::checkpoint::Checkpoint::load(&d.join("ck")).unwrap();
@@ -362,7 +330,7 @@ fn interrupt_writes_a_checkpoint_that_resumes() {
 
 #[test]
 fn nan_samples_are_dropped_counted_and_located_in_summary_and_exr() {
-    let d = temp_dir("nan");
+    let d = temp_dir("cli", "nan");
     let o = lumis(
         &d,
         &[
@@ -414,7 +382,7 @@ fn stat(text: &str, line: &str, label: &str) -> f64 {
 
 #[test]
 fn stats_report_rays_photons_memory_and_phases() {
-    let d = temp_dir("stats");
+    let d = temp_dir("cli", "stats");
     let o = lumis(
         &d,
         &[
@@ -482,7 +450,7 @@ fn stats_report_rays_photons_memory_and_phases() {
 
 #[test]
 fn checkpoint_of_an_edited_included_file_is_refused() {
-    let d = temp_dir("resume-include");
+    let d = temp_dir("cli", "resume-include");
     std::fs::write(
         d.join("main.pbrt"),
         "Film \"rgb\" \"integer xresolution\" [8] \"integer yresolution\" [8]\nLookAt 0 0 -3 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [5 5 5] \"point3 from\" [0 0 -2]\nInclude \"geo.pbrt\"\n",
@@ -519,7 +487,7 @@ fn checkpoint_of_an_edited_included_file_is_refused() {
 
 #[test]
 fn a_time_only_render_resumes_with_a_new_budget() {
-    let d = temp_dir("resume-time");
+    let d = temp_dir("cli", "resume-time");
     let base = [
         "render",
         "--integrator",

@@ -2,27 +2,10 @@
 //! here) writes its report, every image and finite metrics, and a rerun
 //! resumes by skipping every finished run. Also `compare --heatmap`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn lumis(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumis"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run lumis")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lumis-study-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).to_string()
-}
+use common::*;
+use std::path::Path;
 
 const HEAD: &str = r#"Integrator "photon" "integer maxdepth" [ 5 ]
 LookAt 0 1.6 3.4   0 0.4 0   0 1 0
@@ -88,7 +71,7 @@ flags = ["--integrator", "photon", "--photons", "2000", "--caustic-photons", "20
 
 #[test]
 fn tiny_study_writes_report_images_and_finite_metrics_then_resumes() {
-    let d = temp_dir("tiny");
+    let d = temp_dir("study", "tiny");
     config(&d);
     let o = lumis(&d, &["study", "tiny.toml", "--out", "rep"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -147,7 +130,7 @@ fn tiny_study_writes_report_images_and_finite_metrics_then_resumes() {
 
 #[test]
 fn bad_study_config_is_a_clear_error() {
-    let d = temp_dir("bad");
+    let d = temp_dir("study", "bad");
     std::fs::write(d.join("b.toml"), "seeds = [1]\nspp = [2]\n[[scene]]\nname = \"x\"\nfile = \"none.pbrt\"\nreference = \"none.exr\"\n[[setting]]\nname = \"p\"\nflags = []\n").unwrap();
     let o = lumis(&d, &["study", "b.toml"]);
     assert_eq!(o.status.code(), Some(1));
@@ -161,7 +144,7 @@ fn bad_study_config_is_a_clear_error() {
 
 #[test]
 fn compare_writes_a_heatmap_with_a_colour_bar() {
-    let d = temp_dir("heat");
+    let d = temp_dir("study", "heat");
     config(&d);
     let o = lumis(
         &d,

@@ -4,23 +4,9 @@
 
 use std::io::Read;
 use std::net::TcpListener;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn lumis(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumis"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run lumis")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lumis-tev-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use common::*;
 
 struct Cursor<'a>(&'a [u8]);
 
@@ -101,7 +87,7 @@ fn decode(stream: &mut impl Read) -> Received {
 
 #[test]
 fn stream_decodes_to_the_final_image() {
-    let d = temp_dir("stream");
+    let d = temp_dir("tev", "stream");
     let listener = TcpListener::bind("127.0.0.1:0").unwrap();
     let addr = listener.local_addr().unwrap().to_string();
     let server = std::thread::spawn(move || decode(&mut listener.accept().unwrap().0));
@@ -145,7 +131,7 @@ fn stream_decodes_to_the_final_image() {
 
 #[test]
 fn absent_or_vanishing_viewer_is_one_warning() {
-    let d = temp_dir("absent");
+    let d = temp_dir("tev", "absent");
     // Nothing listens on a port we bound and released.
     let port = TcpListener::bind("127.0.0.1:0")
         .unwrap()

@@ -1,0 +1,45 @@
+//! Helpers shared by the end-to-end tests of the `lumis` binary.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+/// Runs `lumis` with `args` in `dir` and waits for it.
+pub fn lumis(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run lumis")
+}
+
+/// Starts `lumis` with `args` in `dir`, sends SIGINT after `after`, and
+/// returns what it printed and its status.
+pub fn lumis_interrupted(dir: &Path, args: &[&str], after: Duration) -> Output {
+    let child = Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args(args)
+        .current_dir(dir)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run lumis");
+    std::thread::sleep(after);
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    child.wait_with_output().unwrap()
+}
+
+/// A fresh empty folder `lumis-<suite>-<name>-<pid>` in the temp dir.
+pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("lumis-{suite}-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).to_string()
+}
