@@ -1,6 +1,7 @@
 //! pbrt's cylinder: radius `r` about the object-space z axis between `zmin`
 //! and `zmax`, swept to `phimax`; open at both ends.
 
+use super::phi_of;
 use super::{Aabb, Ray, SurfaceGeom};
 use lumis_math::{Transform, Vec2, Vec3, PI};
 
@@ -139,16 +140,6 @@ impl Cylinder {
         let po = Vec3::new(self.radius * phi.cos(), self.radius * phi.sin(), z);
         let g = self.geometry_object(po);
         (g.p, g.ng)
-    }
-}
-
-#[inline]
-fn phi_of(p: Vec3) -> f32 {
-    let phi = p.y.atan2(p.x);
-    if phi < 0.0 {
-        phi + 2.0 * PI
-    } else {
-        phi
     }
 }
 

@@ -55,3 +55,15 @@ pub struct SurfaceGeom {
     pub dpdv: Vec3,
     pub uv: Vec2,
 }
+
+/// Azimuth of an object-space point about the z axis, in [0, 2 pi)
+/// (spheres and cylinders).
+#[inline]
+pub(crate) fn phi_of(p: Vec3) -> f32 {
+    let phi = p.y.atan2(p.x);
+    if phi < 0.0 {
+        phi + 2.0 * lumis_math::PI
+    } else {
+        phi
+    }
+}

@@ -1,5 +1,6 @@
 //! Analytic sphere with pbrt's `zmin`/`zmax`/`phimax` cuts.
 
+use super::phi_of;
 use super::{Aabb, Ray, SurfaceGeom};
 use lumis_math::{Transform, Vec2, Vec3, PI};
 
@@ -179,17 +180,6 @@ impl Sphere {
         let po = Vec3::new(r_xy * phi.cos(), r_xy * phi.sin(), z);
         let g = self.geometry_object(po);
         (g.p, g.ng)
-    }
-}
-
-/// Azimuth in [0, 2 pi).
-#[inline]
-fn phi_of(p: Vec3) -> f32 {
-    let phi = p.y.atan2(p.x);
-    if phi < 0.0 {
-        phi + 2.0 * PI
-    } else {
-        phi
     }
 }
 

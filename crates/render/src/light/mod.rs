@@ -40,6 +40,33 @@ pub struct LiSample {
     pub infinite: bool,
 }
 
+impl LiSample {
+    /// Light from a point source at `pos` whose intensity towards direction
+    /// `w` (leaving the light) is `intensity(w)`, seen from `p_ref`; `None`
+    /// when `p_ref` is at the light or no light leaves towards it.
+    pub fn from_point(pos: Vec3, p_ref: Vec3, intensity: impl Fn(Vec3) -> Rgb) -> Option<LiSample> {
+        let d = pos - p_ref;
+        let dist2 = d.length_squared();
+        if dist2 == 0.0 {
+            return None;
+        }
+        let wi = d / dist2.sqrt();
+        let li = intensity(-wi) / dist2;
+        if li.is_black() {
+            return None;
+        }
+        Some(LiSample {
+            wi,
+            li,
+            pdf: 1.0,
+            p_light: pos,
+            n_light: Vec3::ZERO,
+            delta: true,
+            infinite: false,
+        })
+    }
+}
+
 /// An emitted ray: what photon tracing starts from.
 #[derive(Clone, Copy, Debug)]
 pub struct LeSample {

@@ -30,25 +30,7 @@ impl SpotLight {
     }
 
     pub fn sample_li(&self, p_ref: Vec3) -> Option<LiSample> {
-        let d = self.pos - p_ref;
-        let dist2 = d.length_squared();
-        if dist2 == 0.0 {
-            return None;
-        }
-        let wi = d / dist2.sqrt();
-        let li = self.i(-wi) / dist2;
-        if li.is_black() {
-            return None;
-        }
-        Some(LiSample {
-            wi,
-            li,
-            pdf: 1.0,
-            p_light: self.pos,
-            n_light: Vec3::ZERO,
-            delta: true,
-            infinite: false,
-        })
+        LiSample::from_point(self.pos, p_ref, |w| self.i(w))
     }
 
     pub fn sample_le(&self, u: Vec2) -> Option<LeSample> {
