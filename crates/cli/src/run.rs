@@ -7,7 +7,10 @@ use anyhow::{bail, Context, Result};
 use lumis_math::SamplerKind;
 use lumis_render::checkpoint::Checkpoint;
 use lumis_render::image_io::{write_image, ImageFormat, RgbImage};
-use lumis_render::integrator::{render_with, BadSample, RenderHooks, RenderSettings, RenderState};
+use lumis_render::integrator::{
+    render_with, BadSample, RenderHooks, RenderOutcome, RenderSettings, RenderState,
+};
+use lumis_render::load::options::RenderOptions;
 use lumis_render::load::photon::PhotonOverrides;
 use lumis_render::load::{build_scene, BuildOverrides, LoadedScene, DEFAULT_SCENE};
 use std::path::{Path, PathBuf};
@@ -177,12 +180,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         None if a.time.is_some() && a.spp.is_none() => 0,
         None => o.spp,
     };
-    let settings = RenderSettings {
-        time_limit: a.time.map(Duration::from_secs_f64),
-        clamp: a.clamp,
-        inject_nan: a.inject_nan,
-        ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
-    };
+    let settings = render_settings(&a, o, spp);
     if a.verbose > 0 {
         crate::stats::print_setup(&loaded, &settings, &phases);
     }
@@ -226,13 +224,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     let reporter = Reporter::new(a.quiet);
     install_interrupt_handler();
     let scale = o.imaging_scale;
-    let scaled = move |film: &lumis_render::film::Film| {
-        let mut d = film.mean_image();
-        if scale != 1.0 {
-            d.iter_mut().for_each(|v| *v *= scale);
-        }
-        d
-    };
+    let scaled = move |film: &lumis_render::film::Film| scaled_mean(film, scale);
     let mut display = a.display_server.as_ref().map(|addr| {
         let name = files[0]
             .file_stem()
@@ -275,17 +267,14 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         .as_ref()
         .map(|p| p.display().to_string())
         .unwrap_or_else(|| "<default>".into());
-    img.metadata = vec![
-        ("lumis:spp".into(), out.spp.to_string()),
-        ("lumis:integrator".into(), o.integrator.kind.name().into()),
-        ("lumis:seed".into(), a.seed.to_string()),
-        ("lumis:scene".into(), scene_name),
+    img.metadata = image_metadata(&out, o, a.seed, scene_name);
+    img.metadata.extend([
         ("lumis:bad_samples".into(), out.bad_samples.to_string()),
         (
             "lumis:command".into(),
             std::env::args().collect::<Vec<_>>().join(" "),
         ),
-    ];
+    ]);
     if let Some(b) = out.first_bad {
         img.metadata.push((
             "lumis:first_bad_sample".into(),
@@ -342,6 +331,41 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         return Ok(ExitCode::from(EXIT_INTERRUPTED));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The render settings `a` asks for on top of the scene's options, with `spp`
+/// samples per pixel (0: until the time budget ends).
+pub(crate) fn render_settings(a: &RenderArgs, o: &RenderOptions, spp: u32) -> RenderSettings {
+    RenderSettings {
+        time_limit: a.time.map(Duration::from_secs_f64),
+        clamp: a.clamp,
+        inject_nan: a.inject_nan,
+        ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
+    }
+}
+
+/// The film's mean image times the scene's imaging scale.
+pub(crate) fn scaled_mean(film: &lumis_render::film::Film, scale: f32) -> Vec<f32> {
+    let mut d = film.mean_image();
+    if scale != 1.0 {
+        d.iter_mut().for_each(|v| *v *= scale);
+    }
+    d
+}
+
+/// What every written image records of how it was made.
+pub(crate) fn image_metadata(
+    out: &RenderOutcome,
+    o: &RenderOptions,
+    seed: u64,
+    scene_name: String,
+) -> Vec<(String, String)> {
+    vec![
+        ("lumis:spp".into(), out.spp.to_string()),
+        ("lumis:integrator".into(), o.integrator.kind.name().into()),
+        ("lumis:seed".into(), seed.to_string()),
+        ("lumis:scene".into(), scene_name),
+    ]
 }
 
 /// `--accel`: the built-in BVH (default) or Embree (feature `embree`).

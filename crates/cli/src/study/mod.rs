@@ -14,14 +14,13 @@ use anyhow::{anyhow, Result};
 use clap::Parser;
 use config::Config;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
-use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
+use lumis_render::integrator::{render, RenderOutcome};
 use lumis_render::load::LoadedScene;
 use lumis_render::load::{load_path, options::crop_bounds};
 use lumis_render::metrics::{compare, PixelError};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
-use std::time::Duration;
 use std::time::Instant;
 use store::{RunResult, Store};
 
@@ -229,23 +228,11 @@ fn render_loaded(
     } else {
         o.spp
     };
-    let settings = RenderSettings {
-        time_limit: a.time.map(Duration::from_secs_f64),
-        clamp: a.clamp,
-        ..RenderSettings::from_options(o, spp, a.seed, a.threads.unwrap_or(0))
-    };
+    let settings = crate::run::render_settings(a, o, spp);
     let out = render(&loaded.scene, &o.integrator, &settings, &|_| {}, &CANCEL);
-    let mut data = out.film.mean_image();
-    if o.imaging_scale != 1.0 {
-        data.iter_mut().for_each(|v| *v *= o.imaging_scale);
-    }
+    let data = crate::run::scaled_mean(&out.film, o.imaging_scale);
     let mut img = RgbImage::new(out.film.width(), out.film.height(), data);
-    img.metadata = vec![
-        ("lumis:spp".into(), out.spp.to_string()),
-        ("lumis:integrator".into(), o.integrator.kind.name().into()),
-        ("lumis:seed".into(), a.seed.to_string()),
-        ("lumis:scene".into(), scene_name),
-    ];
+    img.metadata = crate::run::image_metadata(&out, o, a.seed, scene_name);
     (img, out)
 }
 
