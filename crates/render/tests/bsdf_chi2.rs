@@ -8,7 +8,8 @@ use common::chi2::{self, Chi2Config};
 use lumis_math::{sampling::square_to_uniform_sphere, Pcg32, Rgb, Vec2, Vec3};
 use lumis_render::bsdf::{
     fresnel::{fr_complex_rgb, fr_dielectric},
-    Bsdf, Conductor, Dielectric, Diffuse, Phong, TransportMode,
+    Bsdf, Conductor, Dielectric, Diffuse, DiffuseTransmission, Phong, ThinDielectric,
+    TransportMode,
 };
 
 /// Overall significance of all chi-square tests in this file.
@@ -116,11 +117,34 @@ fn phong_cases() -> Vec<Case> {
     v
 }
 
+/// Lobe weights by the largest channel: reflection-heavy, transmission-heavy,
+/// pure reflection, pure transmission; `wo` on both sides.
+fn diffuse_transmission_cases() -> Vec<Case> {
+    let mut v = Vec::new();
+    for (r, t) in [
+        (Rgb::new(0.25, 0.5, 0.1), Rgb::new(0.1, 0.2, 0.15)),
+        (Rgb::splat(0.25), Rgb::new(0.9, 0.3, 0.6)),
+        (Rgb::splat(0.7), Rgb::BLACK),
+        (Rgb::BLACK, Rgb::splat(0.6)),
+    ] {
+        for c in [0.8, 0.2, -0.6] {
+            v.push(Case {
+                name: format!("diffusetransmission R {r:?} T {t:?} cos_o {c}"),
+                bsdf: DiffuseTransmission::new(r, t).into(),
+                wo: dir(c),
+                z_breaks: vec![],
+            });
+        }
+    }
+    v
+}
+
 fn all_cases() -> Vec<Case> {
     let mut v = diffuse_cases();
     v.extend(conductor_cases());
     v.extend(dielectric_cases());
     v.extend(phong_cases());
+    v.extend(diffuse_transmission_cases());
     v
 }
 
@@ -185,6 +209,50 @@ fn chi2_dielectric() {
 #[test]
 fn chi2_phong() {
     chi2_family(phong_cases());
+}
+
+#[test]
+fn chi2_diffuse_transmission() {
+    chi2_family(diffuse_transmission_cases());
+}
+
+/// The lobes are chosen by the largest channel of R and T: the fraction of
+/// transmitted samples is `max T / (max R + max T)` (binomial, 4.5 sigma).
+#[test]
+fn diffuse_transmission_lobe_choice() {
+    let (r, t) = (Rgb::new(0.25, 0.5, 0.1), Rgb::new(0.1, 0.2, 0.3));
+    let b: Bsdf = DiffuseTransmission::new(r, t).into();
+    assert!(!b.is_delta() && b.has_transmission() && !b.is_glossy());
+    assert!(b.diffuse_albedo().is_none());
+    let mut rng = Pcg32::new(5, 5);
+    for c in [0.7f32, -0.4] {
+        let wo = dir(c);
+        let n = 100_000;
+        let mut transmitted = 0;
+        for _ in 0..n {
+            let u = Vec2::new(rng.next_f32(), rng.next_f32());
+            let s = b
+                .sample(wo, rng.next_f32(), u, TransportMode::Radiance)
+                .unwrap();
+            assert_eq!(s.transmission, s.wi.z * wo.z < 0.0);
+            assert!(!s.delta && s.eta == 1.0);
+            let want = if s.transmission { t } else { r };
+            assert!((0..3).all(|k| (s.f[k] - want[k] * lumis_math::INV_PI).abs() < 1e-7));
+            transmitted += s.transmission as u32;
+        }
+        let p = 0.3 / 0.8;
+        let f = transmitted as f64 / n as f64;
+        assert!(
+            (f - p).abs() < 4.5 * (p * (1.0 - p) / n as f64).sqrt(),
+            "cos {c}: {f} vs {p}"
+        );
+    }
+    // Nothing to scatter: no sample, zero pdf.
+    let black: Bsdf = DiffuseTransmission::new(Rgb::BLACK, Rgb::BLACK).into();
+    assert!(black
+        .sample(Vec3::Z, 0.5, Vec2::new(0.5, 0.5), TransportMode::Radiance)
+        .is_none());
+    assert_eq!(black.pdf(Vec3::Z, -Vec3::Z, TransportMode::Radiance), 0.0);
 }
 
 // ---------------------------------------------------------------------------
@@ -477,4 +545,81 @@ fn index_matched_dielectric_passes_through() {
             }
         }
     }
+}
+
+/// pbrt-v4's ThinDielectricBxDF: `R' = R + T^2 R / (1 - R^2)`, `T' = 1 - R'`,
+/// a mirror reflection and straight-through transmission, both delta, chosen
+/// in proportion to `R'` and `T'`; every sample's weight `f |cos| / pdf` is
+/// exactly `R' + T' = 1`.
+#[test]
+fn thin_dielectric_formula_and_weights() {
+    for eta in [1.5f32, 1.33, 1.0 / 1.5, 2.4] {
+        let b: Bsdf = ThinDielectric::new(eta).into();
+        assert!(b.is_delta() && b.has_transmission() && !b.is_glossy());
+        for c in [1.0f32, 0.8, 0.3, 0.05, -0.2, -0.9] {
+            let wo = dir(c);
+            let r = fr_dielectric(c.abs(), eta);
+            let t = 1.0 - r;
+            // Total internal reflection (eta < 1): R' = 1.
+            let r2 = if r < 1.0 {
+                r + t * t * r / (1.0 - r * r)
+            } else {
+                1.0
+            };
+            let t2 = 1.0 - r2;
+            // Reflection branch.
+            let s = b
+                .sample(wo, 0.0, Vec2::new(0.3, 0.6), TransportMode::Radiance)
+                .unwrap();
+            assert!(s.delta && !s.transmission && s.eta == 1.0);
+            assert_eq!(s.wi, Vec3::new(-wo.x, -wo.y, wo.z));
+            assert!(
+                (s.pdf - r2).abs() < 1e-6,
+                "eta {eta} cos {c}: {} vs {r2}",
+                s.pdf
+            );
+            assert!((s.f.g * s.wi.z.abs() - r2).abs() < 1e-6);
+            if t2 == 0.0 {
+                continue;
+            }
+            // Transmission branch, in both modes (no radiance scaling).
+            for mode in [TransportMode::Radiance, TransportMode::Importance] {
+                let s = b.sample(wo, 0.999_999, Vec2::ZERO, mode).unwrap();
+                assert!(s.delta && s.transmission && s.eta == 1.0);
+                assert_eq!(s.wi, -wo);
+                assert!((s.pdf - t2).abs() < 1e-6);
+                assert!((s.f.g * s.wi.z.abs() - t2).abs() < 1e-6);
+                assert!((s.f.g * s.wi.z.abs() / s.pdf - 1.0).abs() < 1e-5);
+            }
+            assert!(b.eval(wo, -wo, TransportMode::Radiance).is_black());
+            assert_eq!(b.pdf(wo, -wo, TransportMode::Radiance), 0.0);
+        }
+    }
+    // Normal incidence, eta 1.5: R = 0.04, R' = 2R / (1 + R) = 0.0769...
+    let b: Bsdf = ThinDielectric::new(1.5).into();
+    let s = b
+        .sample(Vec3::Z, 0.0, Vec2::ZERO, TransportMode::Radiance)
+        .unwrap();
+    assert!((s.pdf - 0.08 / 1.04).abs() < 1e-6);
+    // The branch frequencies follow R' and T'.
+    let mut rng = Pcg32::new(6, 6);
+    let wo = dir(0.2);
+    let r2 = {
+        let r = fr_dielectric(0.2, 1.5);
+        r + (1.0 - r) * (1.0 - r) * r / (1.0 - r * r)
+    };
+    let n = 200_000;
+    let mut reflected = 0;
+    for _ in 0..n {
+        let s = b
+            .sample(wo, rng.next_f32(), Vec2::ZERO, TransportMode::Importance)
+            .unwrap();
+        reflected += !s.transmission as u32;
+    }
+    let f = reflected as f64 / n as f64;
+    let p = r2 as f64;
+    assert!(
+        (f - p).abs() < 4.5 * (p * (1.0 - p) / n as f64).sqrt(),
+        "{f} vs {p}"
+    );
 }

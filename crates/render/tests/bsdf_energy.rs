@@ -4,7 +4,9 @@
 //! zero), must never exceed one, and lossless BSDFs must conserve energy.
 
 use lumis_math::{Pcg32, Rgb, Vec2, Vec3};
-use lumis_render::bsdf::{Bsdf, Conductor, Dielectric, Diffuse, Phong, TransportMode};
+use lumis_render::bsdf::{
+    Bsdf, Conductor, Dielectric, Diffuse, DiffuseTransmission, Phong, ThinDielectric, TransportMode,
+};
 
 const SAMPLES: usize = 40_000;
 /// Cosines of the outgoing directions tried for every BSDF.
@@ -223,4 +225,51 @@ fn phong_bounded() {
     assert!((p.kd.r - 0.5).abs() < 1e-6 && (p.ks.r - 0.5).abs() < 1e-6);
     assert!((p.kd.g - 0.2).abs() < 1e-6 && (p.kd.b - 0.5).abs() < 1e-6);
     check_bounded("phong clamped", p.into(), &BOTH);
+}
+
+/// The thin sheet loses nothing: `R' + T' = 1` at every angle and index.
+#[test]
+fn thin_dielectric_conserves() {
+    for eta in [1.5f32, 1.0 / 1.5, 1.33, 2.4, 1.0] {
+        let res = check_bounded(
+            &format!("thin dielectric {eta}"),
+            ThinDielectric::new(eta).into(),
+            &BOTH,
+        );
+        for (c, mode, m, _) in res {
+            assert!(
+                (m[0] - 1.0).abs() < 1e-5,
+                "eta {eta} cos {c} {mode:?}: {}",
+                m[0]
+            );
+        }
+    }
+}
+
+/// Diffuse transmission's directional albedo is `R + T` per channel, from
+/// either side.
+#[test]
+fn diffuse_transmission_albedo_is_r_plus_t() {
+    for (r, t) in [
+        (Rgb::new(0.25, 0.5, 0.1), Rgb::new(0.1, 0.2, 0.3)),
+        (Rgb::splat(0.5), Rgb::splat(0.5)),
+        (Rgb::splat(0.25), Rgb::splat(0.25)),
+        (Rgb::BLACK, Rgb::new(0.9, 0.3, 0.6)),
+    ] {
+        let res = check_bounded(
+            &format!("diffusetransmission {r:?} {t:?}"),
+            DiffuseTransmission::new(r, t).into(),
+            &BOTH,
+        );
+        for (c, mode, m, se) in res {
+            for ch in 0..3 {
+                let want = (r[ch] + t[ch]) as f64;
+                assert!(
+                    (m[ch] - want).abs() < 4.5 * se[ch] + 1e-5,
+                    "{r:?} {t:?} cos {c} {mode:?} channel {ch}: {} vs {want}",
+                    m[ch]
+                );
+            }
+        }
+    }
 }

@@ -4,19 +4,24 @@
 //! surface, `f` excludes the cosine factor and densities are per unit solid
 //! angle. Reflection-only BSDFs are two-sided (they reflect in whichever
 //! hemisphere `wo` lies); the dielectric distinguishes outside (+z) from
-//! inside (-z).
+//! inside (-z). The thin dielectric and diffuse transmission are symmetric
+//! sheets: they transmit into the other hemisphere, whichever side `wo` is on.
 
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod diffuse_transmission;
 pub mod fresnel;
 pub mod microfacet;
 mod phong;
+mod thin_dielectric;
 
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use diffuse_transmission::DiffuseTransmission;
 pub use phong::Phong;
+pub use thin_dielectric::ThinDielectric;
 
 use lumis_math::{Frame, Rgb, Vec2, Vec3};
 
@@ -55,6 +60,8 @@ pub enum Bsdf {
     Conductor(Conductor),
     Dielectric(Dielectric),
     Phong(Phong),
+    ThinDielectric(ThinDielectric),
+    DiffuseTransmission(DiffuseTransmission),
 }
 
 impl Bsdf {
@@ -65,6 +72,8 @@ impl Bsdf {
             Bsdf::Conductor(b) => b.eval(wo, wi),
             Bsdf::Dielectric(b) => b.eval(wo, wi, mode),
             Bsdf::Phong(b) => b.eval(wo, wi),
+            Bsdf::ThinDielectric(_) => Rgb::BLACK,
+            Bsdf::DiffuseTransmission(b) => b.eval(wo, wi),
         }
     }
 
@@ -77,6 +86,8 @@ impl Bsdf {
             Bsdf::Conductor(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
             Bsdf::Phong(b) => b.pdf(wo, wi),
+            Bsdf::ThinDielectric(_) => 0.0,
+            Bsdf::DiffuseTransmission(b) => b.pdf(wo, wi),
         }
     }
 
@@ -91,6 +102,8 @@ impl Bsdf {
             Bsdf::Conductor(b) => b.sample(wo, u),
             Bsdf::Dielectric(b) => b.sample(wo, uc, u, mode),
             Bsdf::Phong(b) => b.sample(wo, uc, u),
+            Bsdf::ThinDielectric(b) => b.sample(wo, uc),
+            Bsdf::DiffuseTransmission(b) => b.sample(wo, uc, u),
         }?;
         if bs.f.is_black()
             || !bs.f.is_finite()
@@ -106,14 +119,18 @@ impl Bsdf {
     /// Every lobe is perfectly specular: `eval` and `pdf` are always zero.
     pub fn is_delta(&self) -> bool {
         match self {
-            Bsdf::Diffuse(_) | Bsdf::Phong(_) => false,
+            Bsdf::Diffuse(_) | Bsdf::Phong(_) | Bsdf::DiffuseTransmission(_) => false,
+            Bsdf::ThinDielectric(_) => true,
             Bsdf::Conductor(b) => b.is_delta(),
             Bsdf::Dielectric(b) => b.is_delta(),
         }
     }
 
     pub fn has_transmission(&self) -> bool {
-        matches!(self, Bsdf::Dielectric(_))
+        matches!(
+            self,
+            Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::DiffuseTransmission(_)
+        )
     }
 
     /// Non-delta but sharply peaked: a photon density estimate is blurry here,
@@ -122,7 +139,7 @@ impl Bsdf {
     /// [`GLOSSY_ALPHA`], or a Phong lobe with exponent above [`GLOSSY_EXPONENT`].
     pub fn is_glossy(&self) -> bool {
         match self {
-            Bsdf::Diffuse(_) => false,
+            Bsdf::Diffuse(_) | Bsdf::ThinDielectric(_) | Bsdf::DiffuseTransmission(_) => false,
             Bsdf::Conductor(b) => {
                 !b.is_delta() && b.distrib.alpha_x.max(b.distrib.alpha_y) < GLOSSY_ALPHA
             }
@@ -165,6 +182,16 @@ impl From<Dielectric> for Bsdf {
 impl From<Phong> for Bsdf {
     fn from(b: Phong) -> Self {
         Bsdf::Phong(b)
+    }
+}
+impl From<ThinDielectric> for Bsdf {
+    fn from(b: ThinDielectric) -> Self {
+        Bsdf::ThinDielectric(b)
+    }
+}
+impl From<DiffuseTransmission> for Bsdf {
+    fn from(b: DiffuseTransmission) -> Self {
+        Bsdf::DiffuseTransmission(b)
     }
 }
 

@@ -176,6 +176,9 @@ fn build_material(
             vec!["materials", "amount"],
         ),
         "interface" | "" | "none" => (MaterialKind::Interface(InterfaceMaterial), vec![]),
+        "thindielectric" | "diffusetransmission" => {
+            super::materials_transmissive::build(desc, &e.ty, p, tex, w)?
+        }
         other => {
             if let Some(k) = super::materials_layered::build(desc, other, &e.loc, p, tex, w)? {
                 k

@@ -1,7 +1,6 @@
-//! pbrt-v4 materials beyond the basic ones: coateddiffuse, coatedconductor,
-//! thindielectric, diffusetransmission.
+//! pbrt-v4's layered materials: coateddiffuse, coatedconductor.
 
-use super::materials::{conductor_spec, eta_param, roughness, ROUGH};
+use super::materials::{conductor_spec, roughness, ROUGH};
 use super::textures::TexBuilder;
 use super::Warnings;
 use crate::material::*;
@@ -10,7 +9,7 @@ use lumis_scene::{Diagnostic, ParamSet, SceneDesc};
 type Built = Option<(MaterialKind, Vec<&'static str>)>;
 
 pub fn build(
-    desc: &SceneDesc,
+    _desc: &SceneDesc,
     ty: &str,
     loc: &lumis_scene::Loc,
     p: &ParamSet,
@@ -18,19 +17,6 @@ pub fn build(
     w: &mut Warnings,
 ) -> Result<Built, Diagnostic> {
     Ok(Some(match ty {
-        "thindielectric" => {
-            w.push(Diagnostic::warning(
-                loc,
-                "material `thindielectric` is not supported yet; using `dielectric`",
-            ));
-            (
-                MaterialKind::Dielectric(DielectricMaterial {
-                    eta: eta_param(desc, p, "eta", 1.5, w)?,
-                    roughness: Roughness::SMOOTH,
-                }),
-                vec!["eta"],
-            )
-        }
         "coatedconductor" => {
             w.push(Diagnostic::warning(
                 loc,

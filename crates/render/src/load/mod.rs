@@ -6,6 +6,7 @@ mod envmap;
 mod lights;
 mod materials;
 mod materials_layered;
+mod materials_transmissive;
 mod mesh;
 pub mod options;
 pub mod photon;

@@ -8,21 +8,25 @@
 pub mod conductor;
 mod dielectric;
 mod diffuse;
+mod diffuse_transmission;
 mod interface;
 mod mix;
 mod phong;
 mod roughness;
 pub mod shading;
 pub mod spectra;
+mod thin_dielectric;
 
 pub use conductor::{ConductorMaterial, ConductorSpec};
 pub use dielectric::DielectricMaterial;
 pub use diffuse::DiffuseMaterial;
+pub use diffuse_transmission::DiffuseTransmissionMaterial;
 pub use interface::InterfaceMaterial;
 pub use mix::MixMaterial;
 pub use phong::PhongMaterial;
 pub use roughness::Roughness;
 pub use shading::Shading;
+pub use thin_dielectric::ThinDielectricMaterial;
 
 use crate::bsdf::{Bsdf, SurfaceBsdf};
 use crate::geometry::SurfaceGeom;
@@ -37,6 +41,8 @@ pub enum MaterialKind {
     Phong(PhongMaterial),
     Mix(MixMaterial),
     Interface(InterfaceMaterial),
+    ThinDielectric(ThinDielectricMaterial),
+    DiffuseTransmission(DiffuseTransmissionMaterial),
 }
 
 /// A material and how it bends the shading normal (bump or normal map).
@@ -64,6 +70,8 @@ impl Material {
             MaterialKind::Dielectric(m) => m.bsdf(t, c),
             MaterialKind::Phong(m) => m.bsdf(t, c),
             MaterialKind::Interface(m) => m.bsdf(),
+            MaterialKind::ThinDielectric(m) => m.bsdf(),
+            MaterialKind::DiffuseTransmission(m) => m.bsdf(t, c),
             // Resolved by `surface_bsdf` before a BSDF is asked for.
             MaterialKind::Mix(_) => Bsdf::Diffuse(crate::bsdf::Diffuse::new(Rgb::BLACK)),
         }
@@ -76,6 +84,7 @@ impl Material {
         match &self.kind {
             MaterialKind::Dielectric(m) => smooth(&m.roughness),
             MaterialKind::Conductor(m) => smooth(&m.roughness),
+            MaterialKind::ThinDielectric(_) => true,
             _ => false,
         }
     }
