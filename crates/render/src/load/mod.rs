@@ -13,6 +13,7 @@ pub mod photon;
 mod shapes;
 mod spectrum;
 mod textures;
+mod textures_procedural;
 
 pub use options::RenderOptions;
 

@@ -90,7 +90,7 @@ impl<'a> TexBuilder<'a> {
         })
     }
 
-    fn value(
+    pub(super) fn value(
         &self,
         p: &ParamSet,
         name: &str,
@@ -126,7 +126,15 @@ impl<'a> TexBuilder<'a> {
         Ok(Some(id))
     }
 
-    fn mapping(&self, t: &TextureDesc, w: &mut Warnings) -> Result<Mapping2D, Diagnostic> {
+    pub(super) fn desc(&self) -> &SceneDesc {
+        self.desc
+    }
+
+    pub(super) fn mapping(
+        &self,
+        t: &TextureDesc,
+        w: &mut Warnings,
+    ) -> Result<Mapping2D, Diagnostic> {
         let p = &t.entity.params;
         let ty = p.get_string("mapping", "uv")?;
         let tex_from_world = t.object_to_world.inverse();
@@ -170,9 +178,7 @@ impl<'a> TexBuilder<'a> {
     ) -> Result<Texture, Diagnostic> {
         let e = &t.entity;
         let p = &e.params;
-        let map_params = [
-            "mapping", "uscale", "vscale", "udelta", "vdelta", "v1", "v2",
-        ];
+        let map_params = super::textures_procedural::MAP2D;
         let (tex, known): (Texture, Vec<&str>) = match e.ty.as_str() {
             "constant" => (
                 Texture::Constant(match self.value(p, "value", 1.0, float)? {
@@ -207,23 +213,6 @@ impl<'a> TexBuilder<'a> {
                     vec!["tex1", "tex2", "dir"],
                 )
             }
-            "checkerboard" => {
-                let dim = p.get_int("dimension", 2)?;
-                if dim != 2 {
-                    w.push(Diagnostic::warning(
-                        &p.loc_of("dimension").unwrap_or_else(|| e.loc.clone()),
-                        "3D checkerboards are not supported yet; using the 2D one",
-                    ));
-                }
-                (
-                    Texture::Checkerboard(CheckerboardTexture {
-                        mapping: self.mapping(t, w)?,
-                        tex1: self.value(p, "tex1", 1.0, float)?,
-                        tex2: self.value(p, "tex2", 0.0, float)?,
-                    }),
-                    [&["tex1", "tex2", "dimension"][..], &map_params].concat(),
-                )
-            }
             "imagemap" => (
                 Texture::Image(self.image(t, float, w)?),
                 [
@@ -241,6 +230,10 @@ impl<'a> TexBuilder<'a> {
                 .concat(),
             ),
             other => {
+                if let Some(built) = super::textures_procedural::build(self, t, float, w)? {
+                    w.unused(p, &format!("texture \"{other}\""), &built.1);
+                    return Ok(built.0);
+                }
                 w.push(Diagnostic::warning(
                     &e.loc,
                     format!("texture type `{other}` is not supported yet; using a constant 0.5"),

@@ -1,23 +1,40 @@
-use super::mapping::Mapping2D;
+use super::mapping::{Mapping2D, Mapping3D};
 use super::{TexCtx, TexRgb, Textures};
 use lumis_math::Rgb;
 
-/// pbrt-v4's 2D `checkerboard`: `tex1` on squares whose integer coordinates
-/// sum to an even number, `tex2` on the others, box-filtered over the
-/// footprint (closed-form integral of the checkerboard against a box).
+/// pbrt-v4's `checkerboard`: `tex1` on squares (2D, over a 2D mapping) or
+/// cubes (3D, `dimension 3`, in the texture's own space) whose integer
+/// coordinates sum to an even number, `tex2` on the others, box-filtered
+/// over the footprint (closed-form integral of the checkerboard against a box).
 #[derive(Clone, Copy, Debug)]
 pub struct CheckerboardTexture {
     pub mapping: Mapping2D,
+    /// Set for the 3D checkerboard (then `mapping` is unused).
+    pub map3d: Option<Mapping3D>,
     pub tex1: TexRgb,
     pub tex2: TexRgb,
 }
 
 impl CheckerboardTexture {
-    pub fn eval(&self, t: &Textures, c: &TexCtx) -> Rgb {
+    /// Weight of `tex2`.
+    fn weight(&self, c: &TexCtx) -> f32 {
+        let r = |a: f32, b: f32| 1.5 * a.abs().max(b.abs());
+        if let Some(m) = self.map3d {
+            let tc = m.map(c);
+            let (p, dx, dy) = (tc.p, tc.dpdx, tc.dpdy);
+            let s = filtered_sign(p.x, r(dx.x, dy.x))
+                * filtered_sign(p.y, r(dx.y, dy.y))
+                * filtered_sign(p.z, r(dx.z, dy.z));
+            return 0.5 - 0.5 * s;
+        }
         let tc = self.mapping.map(c);
-        let ds = 1.5 * tc.dst_dx.x.abs().max(tc.dst_dy.x.abs());
-        let dt = 1.5 * tc.dst_dx.y.abs().max(tc.dst_dy.y.abs());
-        let w = 0.5 - filtered_sign(tc.st.x, ds) * filtered_sign(tc.st.y, dt) * 0.5;
+        let ds = r(tc.dst_dx.x, tc.dst_dy.x);
+        let dt = r(tc.dst_dx.y, tc.dst_dy.y);
+        0.5 - filtered_sign(tc.st.x, ds) * filtered_sign(tc.st.y, dt) * 0.5
+    }
+
+    pub fn eval(&self, t: &Textures, c: &TexCtx) -> Rgb {
+        let w = self.weight(c);
         let a = if w < 1.0 {
             self.tex1.eval(t, c)
         } else {
@@ -57,6 +74,34 @@ pub fn filtered_sign(x: f32, r: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cubes_in_3d() {
+        use lumis_math::{Transform, Vec2, Vec3};
+        let c = CheckerboardTexture {
+            mapping: Mapping2D::Uv {
+                su: 1.0,
+                sv: 1.0,
+                du: 0.0,
+                dv: 0.0,
+            },
+            map3d: Some(Mapping3D {
+                tex_from_world: Transform::IDENTITY,
+            }),
+            tex1: TexRgb::Const(Rgb::splat(1.0)),
+            tex2: TexRgb::Const(Rgb::splat(0.0)),
+        };
+        let t = Textures::default();
+        let at = |x: f32, y: f32, z: f32| {
+            c.eval(&t, &TexCtx::at(Vec3::new(x, y, z), Vec3::Z, Vec2::ZERO))
+                .r
+        };
+        assert_eq!(at(0.5, 0.5, 0.5), 1.0);
+        assert_eq!(at(1.5, 0.5, 0.5), 0.0);
+        assert_eq!(at(1.5, 1.5, 0.5), 1.0);
+        assert_eq!(at(1.5, 1.5, 1.5), 0.0);
+        assert_eq!(at(-0.5, 0.5, 0.5), 0.0);
+    }
 
     #[test]
     fn filtered_sign_is_the_box_mean_of_the_square_wave() {

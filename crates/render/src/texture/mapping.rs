@@ -30,6 +30,32 @@ pub enum Mapping2D {
     },
 }
 
+/// A point in 3D texture space and its screen-space derivatives.
+#[derive(Clone, Copy, Debug)]
+pub struct TexCoord3D {
+    pub p: Vec3,
+    pub dpdx: Vec3,
+    pub dpdy: Vec3,
+}
+
+/// pbrt-v4's TextureMapping3D: the shading point in the texture's own space
+/// (the CTM at its `Texture` directive).
+#[derive(Clone, Copy, Debug)]
+pub struct Mapping3D {
+    pub tex_from_world: Transform,
+}
+
+impl Mapping3D {
+    pub fn map(&self, c: &TexCtx) -> TexCoord3D {
+        let m = &self.tex_from_world;
+        TexCoord3D {
+            p: m.point(c.p),
+            dpdx: m.vector(c.dpdx),
+            dpdy: m.vector(c.dpdy),
+        }
+    }
+}
+
 impl Mapping2D {
     pub fn map(&self, c: &TexCtx) -> TexCoord2D {
         match *self {

@@ -6,25 +6,38 @@
 //! variants evaluated to grey (`r == g == b`); [`TexFloat`] reads the first
 //! channel.
 
+mod bilerp;
 mod checkerboard;
 mod directionmix;
+mod dots;
+mod fbm;
 mod footprint;
 pub mod image;
 mod imagemap;
 pub mod mapping;
+mod marble;
 pub mod mipmap;
 mod mix;
+pub mod noise;
 mod scale;
 pub mod tga;
+mod windy;
+mod wrinkled;
 
+pub use bilerp::BilerpTexture;
 pub use checkerboard::CheckerboardTexture;
 pub use directionmix::DirectionMixTexture;
+pub use dots::DotsTexture;
+pub use fbm::FbmTexture;
 pub use footprint::Footprint;
 pub use imagemap::ImageTexture;
-pub use mapping::Mapping2D;
+pub use mapping::{Mapping2D, Mapping3D};
+pub use marble::MarbleTexture;
 pub use mipmap::{FilterKind, MipMap, WrapMode};
 pub use mix::MixTexture;
 pub use scale::ScaleTexture;
+pub use windy::WindyTexture;
+pub use wrinkled::WrinkledTexture;
 
 use lumis_math::{Rgb, Vec2, Vec3};
 
@@ -36,6 +49,12 @@ pub enum Texture {
     Scale(ScaleTexture),
     Mix(MixTexture),
     DirectionMix(DirectionMixTexture),
+    Bilerp(BilerpTexture),
+    Dots(DotsTexture),
+    Fbm(FbmTexture),
+    Wrinkled(WrinkledTexture),
+    Windy(WindyTexture),
+    Marble(MarbleTexture),
 }
 
 /// Where a texture is evaluated: the shading point with its screen-space
@@ -138,6 +157,12 @@ impl Textures {
             Texture::Scale(t) => t.eval(self, c),
             Texture::Mix(t) => t.eval(self, c),
             Texture::DirectionMix(t) => t.eval(self, c),
+            Texture::Bilerp(t) => t.eval(c),
+            Texture::Dots(t) => t.eval(self, c),
+            Texture::Fbm(t) => t.eval(c),
+            Texture::Wrinkled(t) => t.eval(c),
+            Texture::Windy(t) => t.eval(c),
+            Texture::Marble(t) => t.eval(c),
         }
     }
 
@@ -192,6 +217,7 @@ mod tests {
         };
         let id = t.push(Texture::Checkerboard(CheckerboardTexture {
             mapping: uv,
+            map3d: None,
             tex1: TexRgb::Const(Rgb::splat(1.0)),
             tex2: TexRgb::Const(Rgb::splat(0.0)),
         }));
