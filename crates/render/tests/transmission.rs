@@ -287,3 +287,69 @@ Texture "c" "spectrum" "scale" "rgb tex" [0.1 0.2 0.4]
         .expect("negative scale is an error");
     assert!(e.message.contains("scale") && e.loc.is_some(), "{e:?}");
 }
+
+/// An area light above a thin glass sheet above a diffuse floor; the camera
+/// sits under the sheet. The floor's light all comes through the sheet:
+/// caustics `L S D` (and `L S D S D` through the sheet's reflection). Each
+/// caustic mode of `photon` (the seed's MIS, photons only, gather rays
+/// only) matches `path` (which finds the light by BSDF sampling through the
+/// delta sheet).
+#[test]
+fn thin_sheet_caustic_modes_match_path() {
+    let scene = |integrator: &str, caustics: &str| {
+        format!(
+            r#"Integrator "{integrator}" "integer maxdepth" [ 6 ] "string caustics" "{caustics}"
+  "integer causticphotons" [ 400000 ]
+{HEADER}{}
+LookAt 0 0 1  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 50 ]
+WorldBegin
+AttributeBegin
+AreaLightSource "diffuse" "rgb L" [ 4 4 4 ]
+Shape "trianglemesh" "integer indices" [ 0 2 1 0 3 2 ]
+  "point3 P" [ -0.75 -0.75 3  0.75 -0.75 3  0.75 0.75 3  -0.75 0.75 3 ]
+AttributeEnd
+AttributeBegin
+Material "thindielectric" "float eta" [ 1.5 ]
+{}
+AttributeEnd
+Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+{}
+"#,
+            film(12),
+            quad(2.0, 3.0),
+            quad(0.0, 3.0)
+        )
+    };
+    let render = |integrator: &str, caustics: &str, spp: u32| {
+        let text = scene(integrator, caustics);
+        let text = if integrator == "path" {
+            text.replace(r#""string caustics" "mis""#, "")
+                .replace(r#""integer causticphotons" [ 400000 ]"#, "")
+        } else {
+            text
+        };
+        let l = load(&text, &Default::default());
+        assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+        let out = render_loaded(&l, spp, 11, 0);
+        assert_eq!(out.bad_samples, 0);
+        mean_and_se(&out.film, None)
+    };
+    let (p, p_se) = render("path", "mis", 8192);
+    eprintln!("path {p:.5} ± {p_se:.5}");
+    assert!(p > 0.01, "the floor is lit: {p}");
+    for mode in ["mis", "photons", "gather"] {
+        let (m, m_se) = render("photon", mode, 16);
+        let noise = (p_se * p_se + m_se * m_se).sqrt();
+        eprintln!(
+            "photon {mode}: {m:.5} ± {m_se:.5} ({:+.2}%)",
+            (m - p) / p * 100.0
+        );
+        // Photon-map blur of a smooth caustic: a few percent at most.
+        assert!(
+            (m - p).abs() < 0.03 * p + 4.0 * noise,
+            "photon {mode} {m} vs path {p}: {:+.2}%",
+            (m - p) / p * 100.0
+        );
+    }
+}
