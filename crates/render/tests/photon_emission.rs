@@ -108,3 +108,164 @@ fn goniometric_light_emits_its_power() {
         1e-3,
     );
 }
+
+/// Writes a `w` x `h` image of the given texels (row 0 at the top).
+fn image(name: &str, w: u32, h: u32, texels: &[[f32; 3]]) -> std::path::PathBuf {
+    support::envmap::write_env(name, w, h, |x, y| {
+        let t = texels[(y * w + x) as usize];
+        lumis_math::Rgb::new(t[0], t[1], t[2])
+    })
+}
+
+fn lum(c: [f32; 3]) -> f64 {
+    lumis_math::Rgb::new(c[0], c[1], c[2]).luminance() as f64
+}
+
+/// A 2-texel image interpolated bilinearly with clamping: `a` up to 1/4 of
+/// the way, `b` from 3/4, linear between.
+fn ramp(a: f64, b: f64, t: f64) -> f64 {
+    a + (b - a) * ((t - 0.25) / 0.5).clamp(0.0, 1.0)
+}
+
+const A: [f32; 3] = [0.2, 0.4, 1.0];
+const B: [f32; 3] = [3.0, 2.0, 0.5];
+const QUAD: &str = r#"Shape "trianglemesh" "point3 P" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ] "integer indices" [ 0 1 2 0 2 3 ] "point2 uv" [ 0 0  1 0  1 1  0 1 ]"#;
+
+/// Textured area lights (an image `filename`) in an absorbing sphere: the
+/// photons' total flux is pi (per side) times the image's radiance
+/// integrated over the surface, and so is the light's `power`.
+#[test]
+fn textured_area_lights_emit_their_power() {
+    let wide = image("ph-emit-2x1.exr", 2, 1, &[A, B]);
+    let tall = image("ph-emit-1x2.exr", 1, 2, &[A, B]);
+    let pi = PI as f64;
+    // Quad, uv over the unit square once: the texels' mean, times the area 4.
+    let quad = pi * 4.0 * (lum(A) + lum(B)) / 2.0;
+    // Disk of radii 1 and 1/4, two-sided, scale 2: v = (1 - r) / (3/4), and
+    // the image's y = 1 - v (A on top); the area element is 2 pi r dr.
+    let m = 100_000;
+    let mut disk = 0.0;
+    for i in 0..m {
+        let r = 0.25 + 0.75 * (i as f64 + 0.5) / m as f64;
+        let y = 1.0 - (1.0 - r) / 0.75;
+        disk += ramp(lum(A), lum(B), y) * 2.0 * pi * r * 0.75 / m as f64;
+    }
+    let disk = 2.0 * pi * 2.0 * disk;
+    for (label, world, expected) in [
+        (
+            "textured quad",
+            format!(
+                "AreaLightSource \"diffuse\" \"string filename\" \"{}\"\n{QUAD}",
+                wide.display()
+            ),
+            quad,
+        ),
+        (
+            "textured disk",
+            format!(
+                "AreaLightSource \"diffuse\" \"string filename\" \"{}\" \"float scale\" [ 2 ] \"bool twosided\" true\nShape \"disk\" \"float radius\" [ 1 ] \"float innerradius\" [ 0.25 ]",
+                tall.display()
+            ),
+            disk,
+        ),
+        (
+            "textured sphere, power 7",
+            format!(
+                "AreaLightSource \"diffuse\" \"string filename\" \"{}\" \"float power\" [ 7 ]\nShape \"sphere\" \"float radius\" [ 0.5 ]",
+                tall.display()
+            ),
+            7.0,
+        ),
+    ] {
+        let world = format!("AttributeBegin\n{world}\nAttributeEnd\n{ENCLOSURE}");
+        let text = format!("Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n{world}\n");
+        let l = load(&text, &Default::default());
+        assert!(l.warnings.is_empty(), "{label}: {:?}", l.warnings);
+        let power: f64 = l
+            .scene
+            .lights
+            .iter()
+            .map(|x| x.power(&l.scene.shapes).luminance() as f64)
+            .sum();
+        check(&format!("{label}: power"), power, expected, 1e-3);
+        check(&format!("{label}: photons"), first_hit_flux(&world), expected, 2e-3);
+    }
+}
+
+/// Where photons leave a textured quad: binned by the emitter's uv (8 x 2
+/// bins), the flux they carry matches `pi ∫_bin L dA` (a Z-test per bin),
+/// and, photons being of nearly equal power, so do their counts.
+#[test]
+fn textured_photon_origins_follow_the_image() {
+    let path = image("ph-origins.exr", 2, 1, &[A, B]);
+    let text = format!(
+        "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nAreaLightSource \"diffuse\" \"string filename\" \"{}\"\n{QUAD}\n",
+        path.display()
+    );
+    let l = load(&text, &Default::default());
+    let (nu, nv) = (8usize, 2usize);
+    let n = 400_000usize;
+    let mut flux = vec![0f64; nu * nv];
+    let mut flux2 = vec![0f64; nu * nv];
+    let mut counts = vec![0f64; nu * nv];
+    let mut powers = Vec::with_capacity(n);
+    let mut rng = lumis_math::Pcg32::new(11, 3);
+    let mut u2 = || lumis_math::Vec2::new(rng.next_f32(), rng.next_f32());
+    for _ in 0..n {
+        let (li, pmf) = l.scene.light_sampler.sample(u2().x).unwrap();
+        let Some(s) = l.scene.lights[li as usize].sample_le(&l.scene.shapes, u2(), u2()) else {
+            continue;
+        };
+        let f = (s.flux_weight() / pmf).luminance() as f64;
+        let (u, v) = (
+            (s.ray.o.x as f64 + 1.0) / 2.0,
+            (s.ray.o.y as f64 + 1.0) / 2.0,
+        );
+        let b =
+            ((v * nv as f64) as usize).min(nv - 1) * nu + ((u * nu as f64) as usize).min(nu - 1);
+        flux[b] += f;
+        flux2[b] += f * f;
+        counts[b] += 1.0;
+        powers.push(f);
+    }
+    let pi = PI as f64;
+    let total: f64 = pi * 4.0 * (lum(A) + lum(B)) / 2.0;
+    let mut worst_count = 0f64;
+    for b in 0..nu * nv {
+        let (u0, u1) = ((b % nu) as f64 / nu as f64, (b % nu + 1) as f64 / nu as f64);
+        let m = 10_000;
+        let mut expected = 0.0;
+        for i in 0..m {
+            let u = u0 + (u1 - u0) * (i as f64 + 0.5) / m as f64;
+            expected += ramp(lum(A), lum(B), u) * (u1 - u0) / m as f64;
+        }
+        // Bin area in uv is (u1 - u0) / nv; the quad's area is 4 times its uv area.
+        let expected = pi * 4.0 * expected / nv as f64;
+        let mean = flux[b] / n as f64;
+        let se = ((flux2[b] / n as f64 - mean * mean) / n as f64).sqrt();
+        let z = (mean - expected) / se;
+        let count_dev = counts[b] / n as f64 / (expected / total) - 1.0;
+        worst_count = worst_count.max(count_dev.abs());
+        eprintln!(
+            "bin {b}: flux {mean:.5} expected {expected:.5} z {z:+.2}; count {count_dev:+.4}"
+        );
+        assert!(
+            z.abs() < 4.0,
+            "bin {b}: flux {mean} vs {expected} (z {z:.1})"
+        );
+    }
+    let (lo, hi) = powers
+        .iter()
+        .fold((f64::MAX, 0f64), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let mean_p = powers.iter().sum::<f64>() / powers.len() as f64;
+    eprintln!(
+        "photon power: min {:.4} max {:.4} of the mean; counts off by at most {worst_count:.4}",
+        lo / mean_p,
+        hi / mean_p
+    );
+    assert!(
+        worst_count < 0.05,
+        "counts do not follow the image: {worst_count}"
+    );
+    assert!(hi / lo < 1.5, "photon powers differ: {lo} .. {hi}");
+}

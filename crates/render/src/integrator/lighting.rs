@@ -96,7 +96,7 @@ pub fn emitted_mis_n(
         return Rgb::BLACK;
     };
     let light = &scene.lights[li as usize];
-    let le = light.l(hit.geom.ng, -ray.d);
+    let le = light.l(hit.geom.ng, hit.geom.uv, -ray.d);
     if le.is_black() || count_fully {
         return le;
     }

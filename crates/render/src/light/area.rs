@@ -1,5 +1,8 @@
-//! Diffuse area light on one primitive (pbrt's "diffuse" AreaLightSource).
+//! Diffuse area light on one primitive (pbrt's "diffuse" AreaLightSource),
+//! emitting a constant radiance or an image (`area_texture.rs`).
 
+use super::area_param::{square_to_surface, surface_to_square};
+use super::area_texture::TexturedEmission;
 use super::shape_sample::{pdf_solid_angle, sample_area, sample_solid_angle};
 use super::{LeSample, LiSample};
 use crate::geometry::{offset_ray_origin, Prim, Ray};
@@ -10,49 +13,119 @@ use lumis_math::{Frame, Rgb, Vec2, Vec3, PI};
 #[derive(Clone, Debug)]
 pub struct AreaLight {
     pub prim: Prim,
-    /// Emitted radiance, scale included.
+    /// Emitted radiance, scale included; with an image, the image's
+    /// multiplier (pbrt-v4's `scale`, and the factor that `power` sets).
     pub lemit: Rgb,
     pub two_sided: bool,
+    /// The image and this primitive's sampling density over it.
+    pub texture: Option<Box<TexturedEmission>>,
+}
+
+/// A point on the light with its surface parameters and area density.
+#[derive(Clone, Copy, Debug)]
+pub struct LightPoint {
+    pub p: Vec3,
+    pub n: Vec3,
+    /// Surface `(u, v)` (only computed for textured lights).
+    pub uv: Vec2,
+    /// Density per unit area.
+    pub pdf: f32,
 }
 
 impl AreaLight {
+    /// Radiance leaving the point with normal `n` and surface parameters `uv`
+    /// in direction `w`.
     #[inline]
-    pub fn l(&self, n: Vec3, w: Vec3) -> Rgb {
+    pub fn l(&self, n: Vec3, uv: Vec2, w: Vec3) -> Rgb {
         if !self.two_sided && n.dot(w) <= 0.0 {
             return Rgb::BLACK;
         }
-        self.lemit
+        match &self.texture {
+            None => self.lemit,
+            Some(t) => self.lemit * t.l(uv),
+        }
+    }
+
+    /// A point by area: uniform, or by the image's luminance when textured.
+    pub fn sample_point(&self, shapes: &Shapes, u: Vec2) -> LightPoint {
+        match &self.texture {
+            None => {
+                let sp = sample_area(shapes, self.prim, u);
+                LightPoint {
+                    p: sp.p,
+                    n: sp.n,
+                    uv: Vec2::ZERO,
+                    pdf: sp.pdf,
+                }
+            }
+            Some(t) => {
+                let (x, pdf) = t.sample(u);
+                let g = square_to_surface(shapes, self.prim, x);
+                LightPoint {
+                    p: g.p,
+                    n: g.ng,
+                    uv: g.uv,
+                    pdf: pdf / shapes.area(self.prim),
+                }
+            }
+        }
+    }
+
+    /// Area density of [`AreaLight::sample_point`] at the light point `p`.
+    pub fn pdf_pos(&self, shapes: &Shapes, p: Vec3) -> f32 {
+        let a = shapes.area(self.prim);
+        match &self.texture {
+            None => 1.0 / a,
+            Some(t) => t.pdf(surface_to_square(shapes, self.prim, p)) / a,
+        }
     }
 
     pub fn sample_li(&self, shapes: &Shapes, p_ref: Vec3, u: Vec2) -> Option<LiSample> {
-        let sp = sample_solid_angle(shapes, self.prim, p_ref, u)?;
-        let d = sp.p - p_ref;
+        let (p, n, uv, pdf) = match &self.texture {
+            None => {
+                let sp = sample_solid_angle(shapes, self.prim, p_ref, u)?;
+                (sp.p, sp.n, Vec2::ZERO, sp.pdf)
+            }
+            Some(_) => {
+                let lp = self.sample_point(shapes, u);
+                (
+                    lp.p,
+                    lp.n,
+                    lp.uv,
+                    area_to_solid_angle(lp.pdf, p_ref, lp.p, lp.n),
+                )
+            }
+        };
+        let d = p - p_ref;
         let len = d.length();
-        if len == 0.0 || sp.pdf == 0.0 || !sp.pdf.is_finite() {
+        if len == 0.0 || pdf == 0.0 || !pdf.is_finite() {
             return None;
         }
         let wi = d / len;
-        let li = self.l(sp.n, -wi);
+        let li = self.l(n, uv, -wi);
         if li.is_black() {
             return None;
         }
         Some(LiSample {
             wi,
             li,
-            pdf: sp.pdf,
-            p_light: sp.p,
-            n_light: sp.n,
+            pdf,
+            p_light: p,
+            n_light: n,
             delta: false,
             infinite: false,
         })
     }
 
     pub fn pdf_li(&self, shapes: &Shapes, p_ref: Vec3, p: Vec3, n: Vec3) -> f32 {
-        pdf_solid_angle(shapes, self.prim, p_ref, p, n)
+        match &self.texture {
+            None => pdf_solid_angle(shapes, self.prim, p_ref, p, n),
+            Some(_) => area_to_solid_angle(self.pdf_pos(shapes, p), p_ref, p, n),
+        }
     }
 
     pub fn sample_le(&self, shapes: &Shapes, u1: Vec2, u2: Vec2) -> Option<LeSample> {
-        let sp = sample_area(shapes, self.prim, u1);
+        let sp = self.sample_point(shapes, u1);
         let mut n = sp.n;
         let mut u = u2;
         let mut dir_pdf_scale = 1.0;
@@ -69,13 +142,13 @@ impl AreaLight {
         let local = square_to_cosine_hemisphere(u);
         let d = Frame::from_normal(n).to_world(local);
         let pdf_dir = cosine_hemisphere_pdf(local.z) * dir_pdf_scale;
-        if pdf_dir == 0.0 {
+        if pdf_dir == 0.0 || sp.pdf == 0.0 {
             return None;
         }
         let ray = Ray::new(offset_ray_origin(sp.p, n), d);
         Some(LeSample {
             ray,
-            le: self.lemit,
+            le: self.l(sp.n, sp.uv, d),
             pdf_pos: sp.pdf,
             pdf_dir,
             n,
@@ -84,8 +157,26 @@ impl AreaLight {
         })
     }
 
+    /// Emitted power: `pi * sides * area` times the mean radiance over the
+    /// primitive (the image's integral over it for textured lights).
     pub fn power(&self, shapes: &Shapes) -> Rgb {
         let sides = if self.two_sided { 2.0 } else { 1.0 };
-        self.lemit * (PI * sides * shapes.area(self.prim))
+        let mean = match &self.texture {
+            None => self.lemit,
+            Some(t) => self.lemit * t.mean,
+        };
+        mean * (PI * sides * shapes.area(self.prim))
     }
+}
+
+/// Solid-angle density at `p_ref` of a light point `p` (normal `n`) sampled
+/// with area density `pdf_area`.
+fn area_to_solid_angle(pdf_area: f32, p_ref: Vec3, p: Vec3, n: Vec3) -> f32 {
+    let d = p - p_ref;
+    let dist2 = d.length_squared();
+    let cos = n.dot(d).abs() / dist2.sqrt();
+    if cos == 0.0 || dist2 == 0.0 {
+        return 0.0;
+    }
+    pdf_area * dist2 / cos
 }

@@ -2,6 +2,8 @@
 //! event estimation) and can emit rays (photon tracing), and knows its power.
 
 pub mod area;
+pub mod area_param;
+pub mod area_texture;
 pub mod distant;
 pub mod goniometric;
 pub mod image_infinite;
@@ -11,7 +13,8 @@ pub mod sampler;
 pub mod shape_sample;
 pub mod spot;
 
-pub use area::AreaLight;
+pub use area::{AreaLight, LightPoint};
+pub use area_texture::{EmissionImage, TexturedEmission};
 pub use distant::DistantLight;
 pub use goniometric::GoniometricLight;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight};
@@ -162,10 +165,11 @@ impl Light {
         }
     }
 
-    /// Radiance leaving an area light at a point with normal `n` in direction `w`.
-    pub fn l(&self, n: Vec3, w: Vec3) -> Rgb {
+    /// Radiance leaving an area light at a point with normal `n` and surface
+    /// parameters `uv` (textured emitters) in direction `w`.
+    pub fn l(&self, n: Vec3, uv: Vec2, w: Vec3) -> Rgb {
         match self {
-            Light::Area(l) => l.l(n, w),
+            Light::Area(l) => l.l(n, uv, w),
             _ => Rgb::BLACK,
         }
     }

@@ -2,6 +2,7 @@
 //! checked runtime objects. Unknown parameters become warnings with their
 //! locations; unsupported types are warnings too, never silently ignored.
 
+mod area_lights;
 mod envmap;
 mod lights;
 mod materials;

@@ -2,14 +2,13 @@
 
 use super::materials::BuiltMaterials;
 use super::mesh::{bilinear_triangles, make_mesh, push_mesh};
-use super::spectrum::rgb_param;
 use super::Warnings;
 use crate::geometry::subdiv::loop_subdivide;
 use crate::geometry::{Cylinder, Disk, Prim, Sphere};
-use crate::light::{AreaLight, Light};
+use crate::light::Light;
 use crate::scene::{Instance, InstanceSet, PrimInfo, Shapes, NO_LIGHT};
-use lumis_math::{Rgb, Transform, PI};
-use lumis_scene::{Diagnostic, Entity, SceneDesc, ShapeDesc};
+use lumis_math::Transform;
+use lumis_scene::{Diagnostic, SceneDesc, ShapeDesc};
 
 pub fn build_shapes(
     desc: &SceneDesc,
@@ -73,16 +72,8 @@ fn add_shapes(
         }
         let first_light = lights.len() as u32;
         if let Some(al) = &s.area_light {
-            let total_area: f32 = new_prims.iter().map(|&p| shapes.area(p)).sum();
-            if let Some((lemit, two_sided)) = area_emission(desc, al, total_area, w)? {
-                for &p in &new_prims {
-                    lights.push(Light::Area(AreaLight {
-                        prim: p,
-                        lemit,
-                        two_sided,
-                    }));
-                }
-            }
+            let built = super::area_lights::area_lights(desc, al, shapes, &new_prims, w)?;
+            lights.extend(built.into_iter().map(Light::Area));
         }
         let has_light = lights.len() as u32 > first_light;
         for (i, &p) in new_prims.iter().enumerate() {
@@ -99,44 +90,6 @@ fn add_shapes(
         }
     }
     Ok(prims)
-}
-
-/// Emitted radiance and sidedness of a `diffuse` area light over a shape of `area`.
-fn area_emission(
-    desc: &SceneDesc,
-    al: &Entity,
-    area: f32,
-    w: &mut Warnings,
-) -> Result<Option<(Rgb, bool)>, Diagnostic> {
-    let p = &al.params;
-    if al.ty != "diffuse" {
-        w.push(Diagnostic::warning(
-            &al.loc,
-            format!(
-                "area light `{}` is not supported; the shape does not emit",
-                al.ty
-            ),
-        ));
-        return Ok(None);
-    }
-    let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE);
-    let scale = p.get_float("scale", 1.0)?;
-    let two_sided = p.get_bool("twosided", false)?;
-    l *= scale;
-    if p.has("power") {
-        let power = p.get_float("power", 0.0)?;
-        let k_e = l.luminance() * PI * if two_sided { 2.0 } else { 1.0 } * area;
-        if k_e > 0.0 {
-            l *= power / k_e;
-        }
-    }
-    w.unsupported(p, &["filename"], "area light", "using `L`");
-    w.unused(
-        p,
-        "area light \"diffuse\"",
-        &["L", "scale", "twosided", "power"],
-    );
-    Ok(Some((l, two_sided)))
 }
 
 /// Converts one shape into primitives (several for meshes).

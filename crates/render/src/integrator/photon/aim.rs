@@ -8,7 +8,6 @@
 //! `Phi / N` replaced by the flux the photon carries).
 
 use crate::geometry::{offset_ray_origin, Aabb, Prim, Ray};
-use crate::light::shape_sample::sample_area;
 use crate::light::Light;
 use crate::scene::{transform_box, Scene};
 use lumis_math::sampling::{
@@ -140,8 +139,8 @@ pub fn aimed_emission(
         };
     Some(match light {
         Light::Area(a) => {
-            let sp = sample_area(&scene.shapes, a.prim, u_pos);
-            emit(sp.p, sp.n, &|w| a.l(sp.n, w), sp.pdf)
+            let sp = a.sample_point(&scene.shapes, u_pos);
+            emit(sp.p, sp.n, &|w| a.l(sp.n, sp.uv, w), sp.pdf)
         }
         Light::Point(p) => emit(p.pos, Vec3::ZERO, &|_| p.intensity, 1.0),
         Light::Goniometric(g) => emit(g.pos, Vec3::ZERO, &|w| g.i(w), 1.0),
@@ -165,7 +164,7 @@ pub fn emitted_flux(
     let pmf = scene.light_sampler.pmf(li);
     match &scene.lights[li as usize] {
         Light::Area(a) => {
-            let pdf_pos = 1.0 / scene.shapes.area(a.prim);
+            let pdf_pos = a.pdf_pos(&scene.shapes, p);
             let cos = n.dot(w).abs();
             let pdf_dir = match targets {
                 Some(t) => t.pdf(p, w),

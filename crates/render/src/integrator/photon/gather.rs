@@ -202,7 +202,7 @@ fn trace_gather(
             emitted = if !specular {
                 emitted_mis_n(scene, &h, &ray, x.geom.p, g.m2 as f32, g.pdf, false)
             } else {
-                let le = scene.lights[li as usize].l(h.geom.ng, -ray.d);
+                let le = scene.lights[li as usize].l(h.geom.ng, h.geom.uv, -ray.d);
                 let flux = || {
                     let t = ctx.maps.targets.as_ref();
                     emitted_flux(scene, t, li, h.geom.p, h.geom.ng, -ray.d, le.luminance())

@@ -1,0 +1,194 @@
+//! A textured area emitter rendered by `path` and `photon`, against analytic
+//! and numeric integrals: a quad at z = 1 facing down, emitting a two-colour
+//! 2x1 image (bilinear: colour `A` up to u = 1/4, `B` from u = 3/4, linear
+//! between), seen directly from below and lighting a diffuse floor at z = 0.
+//! Each pixel's expected value is integrated over its footprint (the camera
+//! looks straight at planes parallel to the film); the left and right halves
+//! of the image are compared separately (Z-tests against the pixels' own
+//! variance), so a mirrored or colour-swapped image fails.
+
+mod support;
+
+use lumis_math::{Vec2, Vec3, PI};
+use lumis_render::film::Film;
+use lumis_render::load::LoadedScene;
+use support::*;
+
+const A: [f32; 3] = [0.2, 0.4, 1.0];
+const B: [f32; 3] = [3.0, 2.0, 0.5];
+const RES: u32 = 16;
+const ALBEDO: f64 = 0.5;
+
+/// The emitter's radiance (channel `c`) at `x` on the quad [-1, 1]^2.
+fn l_emit(c: usize, x: f64) -> f64 {
+    let u = (x + 1.0) / 2.0;
+    let (a, b) = (A[c] as f64, B[c] as f64);
+    a + (b - a) * ((u - 0.25) / 0.5).clamp(0.0, 1.0)
+}
+
+/// Irradiance (channel `c`) on the floor at (x, y) from the emitter one unit
+/// above: `∫ L cos cos / r^2 dA = ∫ L / r^4 dA`, by a 64x64 midpoint rule
+/// (the ramp's kinks at x = ±1/2 fall on cell edges).
+fn irradiance(c: usize, x: f64, y: f64) -> f64 {
+    let n = 64;
+    let h = 2.0 / n as f64;
+    let mut e = 0.0;
+    for i in 0..n {
+        let xe = -1.0 + (i as f64 + 0.5) * h;
+        let l = l_emit(c, xe);
+        for j in 0..n {
+            let ye = -1.0 + (j as f64 + 0.5) * h;
+            let r2 = (x - xe).powi(2) + (y - ye).powi(2) + 1.0;
+            e += l / (r2 * r2) * h * h;
+        }
+    }
+    e
+}
+
+fn scene(integrator: &str, spp: u32, camera: &str, floor: bool) -> LoadedScene {
+    let img = support::envmap::write_env("textured-emitter.exr", 2, 1, |x, _| {
+        let t = if x == 0 { A } else { B };
+        lumis_math::Rgb::new(t[0], t[1], t[2])
+    });
+    let floor = if floor {
+        "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\nShape \"trianglemesh\" \"point3 P\" [ -10 -10 0  10 -10 0  10 10 0  -10 10 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]"
+    } else {
+        ""
+    };
+    let photon = if integrator == "photon" {
+        "\"integer photons\" [ 20000 ] \"integer causticphotons\" [ 1000 ]"
+    } else {
+        ""
+    };
+    let text = format!(
+        r#"Integrator "{integrator}" "integer maxdepth" [ 5 ] {photon}
+Sampler "independent" "integer pixelsamples" [ {spp} ]
+PixelFilter "box"
+Film "rgb" "integer xresolution" [ {RES} ] "integer yresolution" [ {RES} ]
+{camera}
+WorldBegin
+AttributeBegin
+AreaLightSource "diffuse" "string filename" "{}"
+Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+Shape "trianglemesh" "point3 P" [ -1 -1 1  1 -1 1  1 1 1  -1 1 1 ] "integer indices" [ 0 2 1 0 3 2 ] "point2 uv" [ 0 0  1 0  1 1  0 1 ]
+AttributeEnd
+{floor}
+"#,
+        img.display()
+    );
+    let l = load(&text, &Default::default());
+    assert!(l.warnings.is_empty(), "warnings: {:?}", l.warnings);
+    l
+}
+
+/// Z-scores of the left and right image halves against `expected(c, x, y)`
+/// averaged over each pixel's footprint on the plane `z = plane`.
+fn halves(l: &LoadedScene, film: &Film, plane: f32, expected: impl Fn(usize, f64, f64) -> f64) {
+    let cam = &l.scene.camera;
+    let k = 4;
+    for half in 0..2 {
+        let (mut diff, mut var, mut sum_exp) = (0.0, 0.0, 0.0);
+        for py in 0..RES {
+            for px in half * RES / 2..(half + 1) * RES / 2 {
+                let pixel = &film.pixels[(py * RES + px) as usize];
+                let v = pixel.variance_of_mean();
+                for c in 0..3 {
+                    let mut e = 0.0;
+                    for a in 0..k {
+                        for b in 0..k {
+                            let pf = Vec2::new(
+                                px as f32 + (a as f32 + 0.5) / k as f32,
+                                py as f32 + (b as f32 + 0.5) / k as f32,
+                            );
+                            let r = cam.generate_ray(pf, Vec2::splat(0.5));
+                            let t = (plane - r.o.z) / r.d.z;
+                            let p: Vec3 = r.o + r.d * t;
+                            e += expected(c, p.x as f64, p.y as f64) / (k * k) as f64;
+                        }
+                    }
+                    diff += pixel.mean[c] - e;
+                    var += v[c] as f64;
+                    sum_exp += e;
+                }
+            }
+        }
+        let se = var.sqrt().max(1e-5 * sum_exp);
+        let z = diff / se;
+        eprintln!(
+            "half {half}: rendered / expected {:.5}, z {z:+.2} (relative se {:.2e})",
+            (sum_exp + diff) / sum_exp,
+            se / sum_exp
+        );
+        assert!(z.abs() < 4.5, "half {half}: off by {z:.1} standard errors");
+        assert!(se < 0.005 * sum_exp, "half {half}: too noisy to see 1%");
+    }
+}
+
+#[test]
+fn textured_emitter_seen_directly() {
+    for (integrator, spp) in [("path", 16), ("photon", 4)] {
+        eprintln!("{integrator}:");
+        let l = scene(
+            integrator,
+            spp,
+            "LookAt 0 0 0  0 0 1  0 1 0\nCamera \"perspective\" \"float fov\" [ 40 ]",
+            false,
+        );
+        let out = render_loaded(&l, spp, 3, 0);
+        assert_eq!(out.bad_samples, 0);
+        halves(&l, &out.film, 1.0, |c, x, _| l_emit(c, x));
+    }
+}
+
+#[test]
+fn textured_emitter_lights_a_diffuse_floor() {
+    for (integrator, spp) in [("path", 64), ("photon", 16)] {
+        eprintln!("{integrator}:");
+        let l = scene(
+            integrator,
+            spp,
+            "LookAt 0 0 0.5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]",
+            true,
+        );
+        let out = render_loaded(&l, spp, 5, 0);
+        assert_eq!(out.bad_samples, 0);
+        halves(&l, &out.film, 0.0, |c, x, y| {
+            ALBEDO / PI as f64 * irradiance(c, x, y)
+        });
+    }
+}
+
+/// pbrt-v4 refuses `L` together with `filename`; an unreadable image is a
+/// located error too.
+#[test]
+fn textured_emitter_input_errors() {
+    let img = support::envmap::write_env("textured-emitter-err.exr", 2, 1, |_, _| {
+        lumis_math::Rgb::WHITE
+    });
+    for (light, needle) in [
+        (
+            format!(
+                "AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ] \"string filename\" \"{}\"",
+                img.display()
+            ),
+            "either `L` or `filename`",
+        ),
+        (
+            "AreaLightSource \"diffuse\" \"string filename\" \"missing.exr\"".to_string(),
+            "cannot read area light image",
+        ),
+    ] {
+        let text = format!("Camera \"perspective\"\nWorldBegin\n{light}\nShape \"sphere\"\n");
+        let err = lumis_render::load::load_text(
+            &text,
+            "t.pbrt",
+            std::path::Path::new("."),
+            &Default::default(),
+        )
+        .err()
+        .expect("an error");
+        let msg = err.to_string();
+        assert!(msg.contains(needle), "{msg}");
+        assert!(msg.contains("t.pbrt:3:"), "located: {msg}");
+    }
+}
