@@ -1,6 +1,6 @@
 //! Math for lumis: vectors (re-exported from glam), frames, transforms, RGB,
 //! sampling warps with their densities, MIS heuristics, random numbers and
-//! pixel samplers. No rendering ideas live here.
+//! pixel samplers, spectra reduced to RGB. No rendering ideas live here.
 
 pub mod frame;
 pub mod mis;
@@ -8,6 +8,7 @@ pub mod rgb;
 pub mod rng;
 pub mod sampler;
 pub mod sampling;
+pub mod spectrum;
 pub mod transform;
 
 pub use frame::Frame;

@@ -6,7 +6,7 @@
 //! uses the image's mean, which is the same when uv covers the unit square
 //! evenly, as on a quad or a cylinder).
 
-use super::spectrum::rgb_param;
+use super::spectrum::light_rgb;
 use super::Warnings;
 use crate::geometry::Prim;
 use crate::light::area_texture::texel_coverage;
@@ -55,7 +55,7 @@ pub fn area_lights(
     };
     let lemit = match image {
         Some(_) => Rgb::splat(scale),
-        None => rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale,
+        None => light_rgb(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale,
     };
     // Sampling cells: up to 32 along a texel's side, fewer when the shape
     // covers many texels, so that one light holds about a million cells.
@@ -81,8 +81,12 @@ pub fn area_lights(
         .collect();
     if p.has("power") {
         let power = p.get_float("power", 0.0)?;
-        let k_e: f32 = lights.iter().map(|l| l.power(shapes).luminance()).sum();
-        if k_e > 0.0 {
+        // pbrt-v4: `power` multiplies `scale` and is meant for a
+        // unit-luminance spectrum (an `rgb L` keeps its own luminance on
+        // top), while an image's luminance is divided out.
+        let l_lum = lemit.luminance();
+        let k_e: f32 = lights.iter().map(|l| l.power(shapes).luminance()).sum::<f32>() / l_lum;
+        if k_e > 0.0 && l_lum > 0.0 {
             lights.iter_mut().for_each(|l| l.lemit *= power / k_e);
         }
     }

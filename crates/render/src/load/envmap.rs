@@ -6,7 +6,7 @@
 //! the pbrt-v3 upgrade for `mapname`) says it explicitly; with `latlong`,
 //! pbrt-v3's `L` is accepted as an RGB multiplier of the map.
 
-use super::spectrum::rgb_param;
+use super::spectrum::light_rgb;
 use super::Warnings;
 use crate::image_io::read_image;
 use crate::light::{EnvMapping, GoniometricLight, ImageInfiniteLight, Light};
@@ -44,7 +44,7 @@ pub fn build_image_light(
                 "an infinite light takes either `L` or `filename`, not both",
             ));
         }
-        multiplier = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE);
+        multiplier = light_rgb(desc, p, "L")?.unwrap_or(Rgb::WHITE);
     }
     let (path, img) = read_light_image(desc, &file, &file_loc)?;
     let (width, height) = (img.width, img.height);
@@ -125,7 +125,7 @@ pub fn build_goniometric(
     w: &mut Warnings,
 ) -> Result<Light, Diagnostic> {
     let p = &e.params;
-    let mut i = rgb_param(desc, p, "I")?.unwrap_or(Rgb::WHITE) * p.get_float("scale", 1.0)?;
+    let mut i = light_rgb(desc, p, "I")?.unwrap_or(Rgb::WHITE) * p.get_float("scale", 1.0)?;
     let (res, values) = match p.get_opt_string("filename")? {
         Some(file) => {
             let loc = p.loc_of("filename").unwrap_or_else(|| e.loc.clone());
@@ -154,7 +154,9 @@ pub fn build_goniometric(
     };
     let mean = values.iter().map(|&v: &f32| v.max(0.0) as f64).sum::<f64>() / values.len() as f64;
     if p.has("power") {
-        let k = 4.0 * lumis_math::PI * i.luminance() * mean as f32;
+        // pbrt-v4: 4 pi times the image's mean; `I` (unit luminance, or an
+        // `rgb` counted as white) and `scale` multiply.
+        let k = 4.0 * lumis_math::PI * mean as f32;
         if k > 0.0 {
             i *= p.get_float("power", 0.0)? / k;
         }

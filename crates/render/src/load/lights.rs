@@ -1,7 +1,7 @@
 //! `LightSource` directives: point, spot, distant, infinite (constant; with
 //! an image in `envmap.rs`).
 
-use super::spectrum::rgb_param;
+use super::spectrum::light_rgb;
 use super::Warnings;
 use crate::light::*;
 use lumis_math::{Frame, Rgb, Vec3, PI};
@@ -19,12 +19,12 @@ pub fn build_lights(
         let scale = p.get_float("scale", 1.0)?;
         let light = match e.ty.as_str() {
             "point" => {
-                let mut i = rgb_param(desc, p, "I")?.unwrap_or(Rgb::WHITE) * scale;
+                let mut i = light_rgb(desc, p, "I")?.unwrap_or(Rgb::WHITE) * scale;
                 if p.has("power") {
-                    let k = 4.0 * PI * i.luminance();
-                    if k > 0.0 {
-                        i *= p.get_float("power", 0.0)? / k;
-                    }
+                    // pbrt-v4: `power` multiplies `scale` and the spectrum of
+                    // unit luminance (an `rgb` counts as white: its own
+                    // luminance is not divided out).
+                    i *= p.get_float("power", 0.0)? / (4.0 * PI);
                 }
                 let from = p.get_point3("from", Vec3::ZERO)?;
                 w.unused(p, "light \"point\"", &["I", "scale", "power", "from"]);
@@ -34,7 +34,7 @@ pub fn build_lights(
                 })
             }
             "spot" => {
-                let i = rgb_param(desc, p, "I")?.unwrap_or(Rgb::WHITE) * scale;
+                let i = light_rgb(desc, p, "I")?.unwrap_or(Rgb::WHITE) * scale;
                 let from = p.get_point3("from", Vec3::ZERO)?;
                 let to = p.get_point3("to", Vec3::Z)?;
                 let cone = p.get_float("coneangle", 30.0)?;
@@ -54,10 +54,10 @@ pub fn build_lights(
                     cos_falloff_start: (cone - delta).to_radians().cos(),
                 };
                 if p.has("power") {
-                    let k = l.power().luminance();
-                    if k > 0.0 {
-                        l.intensity *= p.get_float("power", 0.0)? / k;
-                    }
+                    // As for point lights: the cone's solid-angle factor only.
+                    let (c0, c1) = (l.cos_falloff_start, l.cos_falloff_end);
+                    let k_e = 2.0 * PI * ((1.0 - c0) + (c0 - c1) / 2.0);
+                    l.intensity *= p.get_float("power", 0.0)? / k_e;
                 }
                 w.unused(
                     p,
@@ -75,7 +75,7 @@ pub fn build_lights(
                 Light::Spot(l)
             }
             "distant" => {
-                let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
+                let mut l = light_rgb(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
                 let from = p.get_point3("from", Vec3::ZERO)?;
                 let to = p.get_point3("to", Vec3::Z)?;
                 let dir = xf.vector(from - to).normalize_or_zero();
@@ -86,10 +86,8 @@ pub fn build_lights(
                     ));
                 }
                 if p.has("illuminance") {
-                    let k = l.luminance();
-                    if k > 0.0 {
-                        l *= p.get_float("illuminance", 0.0)? / k;
-                    }
+                    // pbrt-v4: illuminance perpendicular to the light.
+                    l *= p.get_float("illuminance", 0.0)?;
                 }
                 w.unused(
                     p,
@@ -108,13 +106,11 @@ pub fn build_lights(
                     lights.push(super::envmap::build_image_light(desc, e, &xf, w)?);
                     continue;
                 }
-                let mut l = rgb_param(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
+                let mut l = light_rgb(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
                 if p.has("illuminance") {
-                    // Illuminance of a constant environment on an upward surface is pi * L.
-                    let k = PI * l.luminance();
-                    if k > 0.0 {
-                        l *= p.get_float("illuminance", 0.0)? / k;
-                    }
+                    // Illuminance of a constant environment on an upward
+                    // surface is pi * L (pbrt-v4: for unit-luminance L).
+                    l *= p.get_float("illuminance", 0.0)? / PI;
                 }
                 w.unsupported(p, &["portal"], "infinite light", "ignored");
                 w.unused(

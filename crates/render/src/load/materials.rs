@@ -1,11 +1,11 @@
 //! Materials from `Material` / `MakeNamedMaterial` descriptions.
 
-use super::spectrum::rgb_param;
+use super::spectrum::{spectrum_value, Value};
 use super::textures::TexBuilder;
 use super::Warnings;
-use crate::material::spectra::metal;
 use crate::material::*;
 use crate::texture::{TexFloat, TexRgb};
+use lumis_math::spectrum::{conductor_rgb, mean_under_white, named, reflectance_rgb};
 use lumis_math::Rgb;
 use lumis_scene::{Diagnostic, MaterialDesc, ParamSet, SceneDesc};
 
@@ -63,8 +63,9 @@ pub(super) fn roughness(
     })
 }
 
-/// A scalar index of refraction (`float`, or a spectrum reduced to its mean
-/// with a warning when it disperses).
+/// A scalar index of refraction: a `float`, or a spectrum reduced to its
+/// mean under white light's luminance (an `rgb` to its channels' mean),
+/// with a warning when it disperses (dispersion is not rendered).
 pub(super) fn eta_param(
     desc: &SceneDesc,
     p: &ParamSet,
@@ -84,14 +85,20 @@ pub(super) fn eta_param(
             default
         }
         Some(_) => {
-            let c = rgb_param(desc, p, name)?.unwrap_or(Rgb::splat(default));
-            if c.max_component() - c.min_component() > 1e-3 {
+            let (eta, disperses) = match spectrum_value(desc, p, name)? {
+                Some(Value::Spectrum(s)) => (mean_under_white(&s) as f32, !s.is_constant()),
+                Some(Value::Rgb(c)) => (c.average(), c.max_component() - c.min_component() > 1e-3),
+                None => (default, false),
+            };
+            if disperses {
                 w.push(Diagnostic::warning(
                     &p.loc_of(name).unwrap(),
-                    "dispersion is not rendered: using the mean index of refraction",
+                    format!(
+                        "dispersion is not rendered: using the mean index of refraction {eta:.4}"
+                    ),
                 ));
             }
-            c.average()
+            eta
         }
         None => default,
     };
@@ -105,21 +112,56 @@ pub(super) fn eta_param(
 }
 
 /// Conductor optics from `eta`/`k` or `reflectance` (with `prefix`).
+/// Spectral `eta` and `k` (pbrt-v4's default is copper's) are reduced
+/// together to one `(eta, k)` per channel (`lumis_math::spectrum::conductor_rgb`);
+/// a spectrum paired with an `rgb` or a texture is reduced alone.
 pub(super) fn conductor_spec(
     tex: &TexBuilder,
     p: &ParamSet,
     prefix: &str,
 ) -> Result<ConductorSpec, Diagnostic> {
     let n = |s: &str| format!("{prefix}{s}");
-    Ok(if p.has(&n("reflectance")) {
-        ConductorSpec::Reflectance(tex.spectrum(p, &n("reflectance"), Rgb::WHITE)?)
-    } else {
-        let (cu_eta, cu_k) = metal("metal-Cu-eta").unwrap();
-        ConductorSpec::EtaK {
-            eta: tex.spectrum(p, &n("eta"), cu_eta)?,
-            k: tex.spectrum(p, &n("k"), cu_k)?,
+    if p.has(&n("reflectance")) {
+        return Ok(ConductorSpec::Reflectance(tex.spectrum(
+            p,
+            &n("reflectance"),
+            Rgb::WHITE,
+        )?));
+    }
+    let (eta_name, k_name) = (n("eta"), n("k"));
+    let value = |name: &str, default: &str| -> Result<Option<Value>, Diagnostic> {
+        if p.param(name)
+            .is_some_and(|q| q.ty == "texture" || q.ty == "float")
+        {
+            return Ok(None);
         }
-    })
+        Ok(Some(spectrum_value(tex.desc(), p, name)?.unwrap_or_else(
+            || Value::Spectrum(named(default).expect("copper is a named spectrum")),
+        )))
+    };
+    let eta_v = value(&eta_name, "metal-Cu-eta")?;
+    let k_v = value(&k_name, "metal-Cu-k")?;
+    let lone = |v: &Value| match v {
+        Value::Rgb(c) => *c,
+        Value::Spectrum(s) => reflectance_rgb(s),
+    };
+    let (eta, k) = match (&eta_v, &k_v) {
+        (Some(Value::Spectrum(e)), Some(Value::Spectrum(k))) => {
+            let (e, k) = conductor_rgb(e, k);
+            (TexRgb::Const(e), TexRgb::Const(k))
+        }
+        _ => (
+            match &eta_v {
+                Some(v) => TexRgb::Const(lone(v)),
+                None => tex.spectrum(p, &eta_name, Rgb::WHITE)?,
+            },
+            match &k_v {
+                Some(v) => TexRgb::Const(lone(v)),
+                None => tex.spectrum(p, &k_name, Rgb::BLACK)?,
+            },
+        ),
+    };
+    Ok(ConductorSpec::EtaK { eta, k })
 }
 
 fn build_material(

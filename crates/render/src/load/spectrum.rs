@@ -1,60 +1,125 @@
-//! Spectrum-valued parameters reduced to linear RGB.
+//! Spectrum-valued parameters (`rgb`, `blackbody`, `spectrum` given inline,
+//! by name or by `.spd` file) reduced to linear sRGB with the conventions of
+//! `lumis_math::spectrum`: emitted spectra to unit luminance, reflectances
+//! under white light, conductors' `eta`/`k` by a per-channel fit.
 
-use crate::material::spectra::{blackbody_rgb, glass_ior, metal_component, sampled_rgb};
+use lumis_math::spectrum::{self, illuminant_rgb, reflectance_rgb, Spectrum};
 use lumis_math::Rgb;
-use lumis_scene::{Diagnostic, ParamSet, SceneDesc, SpectrumValue};
+use lumis_scene::{Diagnostic, Loc, ParamSet, SceneDesc, SpectrumValue};
 
-/// Reads a spectrum parameter as RGB; `None` when absent. Textures are not
-/// handled here (see materials).
+/// A spectrum parameter as written: an RGB triple or a spectrum.
+#[derive(Clone, Debug)]
+pub enum Value {
+    Rgb(Rgb),
+    Spectrum(Spectrum),
+}
+
+/// The parameter `name` (not a texture) as RGB or spectrum; `None` when absent.
+pub fn spectrum_value(
+    desc: &SceneDesc,
+    params: &ParamSet,
+    name: &str,
+) -> Result<Option<Value>, Diagnostic> {
+    let Some(v) = params.get_spectrum(name)? else {
+        return Ok(None);
+    };
+    let loc = params.loc_of(name).unwrap_or_else(Loc::none);
+    Ok(Some(match v {
+        SpectrumValue::Rgb(c) => Value::Rgb(Rgb::new(c[0], c[1], c[2])),
+        SpectrumValue::Blackbody(t) => {
+            if !(t > 0.0) {
+                return Err(Diagnostic::error(
+                    &loc,
+                    format!("blackbody temperature must be positive, found {t}"),
+                ));
+            }
+            Value::Spectrum(Spectrum::Blackbody(t as f64))
+        }
+        SpectrumValue::Sampled(pairs) => {
+            let s = pairs.iter().map(|&(l, v)| (l as f64, v as f64)).collect();
+            Value::Spectrum(
+                Spectrum::piecewise(s)
+                    .map_err(|e| Diagnostic::error(&loc, format!("spectrum `{name}`: {e}")))?,
+            )
+        }
+        SpectrumValue::Named(n) => match spectrum::named(&n) {
+            Some(s) => Value::Spectrum(s),
+            // pbrt-v4 reads a string that is no known name as a file.
+            None if desc.resolve_path(&n).is_file() => Value::Spectrum(read_spd(desc, &n, &loc)?),
+            None => {
+                return Err(
+                    Diagnostic::error(&loc, format!("unknown named spectrum `{n}`")).with_help(
+                        format!(
+                            "known names: {}; or give a .spd file of wavelength/value pairs",
+                            spectrum::NAMED.join(", ")
+                        ),
+                    ),
+                )
+            }
+        },
+        SpectrumValue::File(f) => Value::Spectrum(read_spd(desc, &f, &loc)?),
+    }))
+}
+
+/// A `.spd` file: whitespace-separated (wavelength nm, value) pairs, `#`
+/// starting a comment, wavelengths increasing (as pbrt-v4 reads it).
+fn read_spd(desc: &SceneDesc, file: &str, loc: &Loc) -> Result<Spectrum, Diagnostic> {
+    let path = desc.resolve_path(file);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        Diagnostic::error(
+            loc,
+            format!("cannot read spectrum file {}: {e}", path.display()),
+        )
+    })?;
+    let mut nums = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        for tok in line.split('#').next().unwrap_or("").split_whitespace() {
+            let v = tok.parse::<f64>().map_err(|_| {
+                Diagnostic::error(
+                    loc,
+                    format!("{}:{}: `{tok}` is not a number", path.display(), i + 1),
+                )
+            })?;
+            nums.push(v);
+        }
+    }
+    if nums.is_empty() || nums.len() % 2 != 0 {
+        return Err(Diagnostic::error(
+            loc,
+            format!(
+                "{}: expected wavelength/value pairs, found {} numbers",
+                path.display(),
+                nums.len()
+            ),
+        ));
+    }
+    Spectrum::piecewise(nums.chunks(2).map(|c| (c[0], c[1])).collect())
+        .map_err(|e| Diagnostic::error(loc, format!("{}: {e}", path.display())))
+}
+
+/// A reflectance-like parameter (albedo, reflectance, any unitless
+/// spectrum) as RGB; `None` when absent.
 pub fn rgb_param(
     desc: &SceneDesc,
     params: &ParamSet,
     name: &str,
 ) -> Result<Option<Rgb>, Diagnostic> {
-    let Some(v) = params.get_spectrum(name)? else {
-        return Ok(None);
-    };
-    let loc = params.loc_of(name).unwrap_or_else(lumis_scene::Loc::none);
-    Ok(Some(match v {
-        SpectrumValue::Rgb(c) => Rgb::new(c[0], c[1], c[2]),
-        SpectrumValue::Blackbody(t) => blackbody_rgb(t),
-        SpectrumValue::Sampled(pairs) => sampled_rgb(&pairs),
-        SpectrumValue::Named(n) => {
-            if let Some(c) = metal_component(&n) {
-                c
-            } else if let Some(ior) = glass_ior(&n) {
-                Rgb::splat(ior)
-            } else if n.starts_with("stdillum") || n.starts_with("illum-") {
-                Rgb::WHITE
-            } else {
-                return Err(Diagnostic::error(&loc, format!("unknown named spectrum `{n}`"))
-                    .with_help("known: metal-{Ag,Al,Au,Cu,CuZn}-{eta,k}, glass-BK7 and other glass-* names, stdillum-*"));
-            }
-        }
-        SpectrumValue::File(f) => {
-            let path = desc.resolve_path(&f);
-            let text = std::fs::read_to_string(&path).map_err(|e| {
-                Diagnostic::error(
-                    &loc,
-                    format!("cannot read spectrum file {}: {e}", path.display()),
-                )
-            })?;
-            let nums: Result<Vec<f32>, _> = text
-                .lines()
-                .map(|l| l.split('#').next().unwrap_or(""))
-                .flat_map(|l| l.split_whitespace())
-                .map(|t| t.parse::<f32>())
-                .collect();
-            let nums = nums.map_err(|_| {
-                Diagnostic::error(&loc, format!("{}: not a list of numbers", path.display()))
-            })?;
-            if nums.len() < 2 || nums.len() % 2 != 0 {
-                return Err(Diagnostic::error(
-                    &loc,
-                    format!("{}: expected wavelength/value pairs", path.display()),
-                ));
-            }
-            sampled_rgb(&nums.chunks(2).map(|c| (c[0], c[1])).collect::<Vec<_>>())
-        }
+    Ok(spectrum_value(desc, params, name)?.map(|v| match v {
+        Value::Rgb(c) => c,
+        Value::Spectrum(s) => reflectance_rgb(&s),
+    }))
+}
+
+/// A light's emitted spectrum (`L`, `I`) as RGB, as pbrt-v4 renders it: an
+/// `rgb` as given, a spectrum with luminance 1 (pbrt-v4 divides the light's
+/// `scale` by the spectrum's luminance); `None` when absent.
+pub fn light_rgb(
+    desc: &SceneDesc,
+    params: &ParamSet,
+    name: &str,
+) -> Result<Option<Rgb>, Diagnostic> {
+    Ok(spectrum_value(desc, params, name)?.map(|v| match v {
+        Value::Rgb(c) => c,
+        Value::Spectrum(s) => illuminant_rgb(&s),
     }))
 }
