@@ -85,7 +85,11 @@ pub fn area_lights(
         // unit-luminance spectrum (an `rgb L` keeps its own luminance on
         // top), while an image's luminance is divided out.
         let l_lum = lemit.luminance();
-        let k_e: f32 = lights.iter().map(|l| l.power(shapes).luminance()).sum::<f32>() / l_lum;
+        let k_e: f32 = lights
+            .iter()
+            .map(|l| l.power(shapes).luminance())
+            .sum::<f32>()
+            / l_lum;
         if k_e > 0.0 && l_lum > 0.0 {
             lights.iter_mut().for_each(|l| l.lemit *= power / k_e);
         }
