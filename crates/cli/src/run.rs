@@ -223,8 +223,8 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     });
     let reporter = Reporter::new(a.quiet);
     install_interrupt_handler();
-    let scale = o.imaging_scale;
-    let scaled = move |film: &lumis_render::film::Film| scaled_mean(film, scale);
+    let (scale, wb) = (o.imaging_scale, o.white_balance);
+    let scaled = move |film: &lumis_render::film::Film| scaled_mean(film, scale, wb);
     let mut display = a.display_server.as_ref().map(|addr| {
         let name = files[0]
             .file_stem()
@@ -345,10 +345,14 @@ pub(crate) fn render_settings(a: &RenderArgs, o: &RenderOptions, spp: u32) -> Re
 }
 
 /// The film's mean image times the scene's imaging scale.
-pub(crate) fn scaled_mean(film: &lumis_render::film::Film, scale: f32) -> Vec<f32> {
+pub(crate) fn scaled_mean(
+    film: &lumis_render::film::Film,
+    scale: f32,
+    white_balance: Option<lumis_math::Mat3>,
+) -> Vec<f32> {
     let mut d = film.mean_image();
-    if scale != 1.0 {
-        d.iter_mut().for_each(|v| *v *= scale);
+    if scale != 1.0 || white_balance.is_some() {
+        lumis_render::load::RenderOptions::to_output(scale, white_balance, &mut d);
     }
     d
 }

@@ -280,3 +280,37 @@ fn named_glass_is_one_index_with_a_dispersion_warning() {
         l.warnings
     );
 }
+
+#[test]
+fn film_white_balance_neutralises_a_light_of_that_temperature() {
+    let scene = |film: &str| {
+        let text = format!(
+            "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ] {film}\n{}\
+             AttributeBegin\nAreaLightSource \"diffuse\" \"blackbody L\" [ 3001.669 ]\n\
+             Shape \"sphere\"\nAttributeEnd\n",
+            HEAD.replace(
+                "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n",
+                ""
+            )
+        );
+        load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default()).unwrap()
+    };
+    let l = scene("\"float whitebalance\" [ 3000 ] \"string sensor\" \"cie1931\"");
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+    let mut px = lemit(&l).to_array();
+    lumis_render::load::RenderOptions::to_output(2.0, l.options.white_balance, &mut px);
+    // pbrt-v4 balances for 3000 K * 1.4388 / 1.4380 = 3001.669 K (a
+    // blackbody, being below 4000 K): that blackbody comes out white, at
+    // twice its luminance (the imaging ratio).
+    for v in px {
+        assert!((v - 2.0).abs() < 5e-4, "{px:?}");
+    }
+    // No white balance by default; other sensors are ignored with a warning.
+    let l = scene("\"string sensor\" \"canon_eos_5d_mkiv\"");
+    assert!(l.options.white_balance.is_none());
+    assert!(
+        l.warnings.iter().any(|w| w.message.contains("`sensor`")),
+        "{:?}",
+        l.warnings
+    );
+}

@@ -230,7 +230,7 @@ fn render_loaded(
     };
     let settings = crate::run::render_settings(a, o, spp);
     let out = render(&loaded.scene, &o.integrator, &settings, &|_| {}, &CANCEL);
-    let data = crate::run::scaled_mean(&out.film, o.imaging_scale);
+    let data = crate::run::scaled_mean(&out.film, o.imaging_scale, o.white_balance);
     let mut img = RgbImage::new(out.film.width(), out.film.height(), data);
     img.metadata = crate::run::image_metadata(&out, o, a.seed, scene_name);
     (img, out)

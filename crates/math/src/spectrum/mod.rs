@@ -13,12 +13,14 @@
 //! - a dielectric's `eta` becomes its luminance-weighted mean
 //!   ([`mean_under_white`]): dispersion is not rendered.
 
+mod balance;
 mod cie;
 mod conductor;
 mod convert;
 mod illum;
 mod optical;
 
+pub use balance::{white_balance, white_balance_illuminant};
 pub use conductor::{conductor_rgb, fresnel_conductor};
 pub use convert::{
     cmf, illuminant_rgb, mean_under_white, reflectance_rgb, xyz, xyz_to_linear_srgb, CIE_Y_INTEGRAL,

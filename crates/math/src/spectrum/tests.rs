@@ -190,3 +190,28 @@ fn fitted_metals_match_their_spectral_fresnel_curves() {
         "{au:?}"
     );
 }
+
+#[test]
+fn white_balance_maps_its_illuminant_to_white() {
+    for t in [2700.0, 3000.0, 5000.0, 10000.0] {
+        let m = white_balance(t);
+        let c = illuminant_rgb(&white_balance_illuminant(t));
+        let v = m * glam::Vec3::new(c.r, c.g, c.b);
+        // The adaptation takes that white (luminance 1) exactly to D65 white.
+        assert!(
+            (v - glam::Vec3::ONE).abs().max_element() < 1e-4,
+            "{t}: {v:?}"
+        );
+    }
+    // Balancing for D65 (6504 K is 6507.6 K after pbrt's rescaling, the
+    // daylight formula's D65 differs slightly from the table): identity
+    // within 0.5%.
+    let m = white_balance(6504.0 * 1.4380 / 1.4388);
+    let id = glam::Mat3::IDENTITY;
+    for (a, b) in m.to_cols_array().iter().zip(id.to_cols_array()) {
+        assert!((a - b).abs() < 5e-3, "{m:?}");
+    }
+    // Balancing for a warm light cools the image down.
+    let warm = white_balance(3000.0) * glam::Vec3::ONE;
+    assert!(warm.z > warm.x, "{warm:?}");
+}

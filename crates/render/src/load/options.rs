@@ -4,7 +4,7 @@ use super::Warnings;
 use crate::camera::Camera;
 use crate::film::{Filter, PixelBounds};
 use crate::integrator::{Integrator, IntegratorKind};
-use lumis_math::{SamplerKind, Transform, Vec2};
+use lumis_math::{Mat3, SamplerKind, Transform, Vec2, Vec3};
 use lumis_scene::{Diagnostic, Entity, Loc, SceneDesc};
 
 /// Everything the scene file says about how to render it.
@@ -22,6 +22,24 @@ pub struct RenderOptions {
     pub filename: Option<String>,
     /// Film sensor scale: `iso / 100 * exposuretime` (pbrt-v4's imaging ratio).
     pub imaging_scale: f32,
+    /// Film `whitebalance` (kelvin) as a matrix on linear sRGB
+    /// (`lumis_math::spectrum::white_balance`); `None` without one.
+    pub white_balance: Option<Mat3>,
+}
+
+impl RenderOptions {
+    /// The film's output of interleaved linear RGB: the imaging ratio, then
+    /// the white balance (both linear, so applying them to the finished
+    /// image equals pbrt-v4's applying them per sample).
+    pub fn to_output(scale: f32, white_balance: Option<Mat3>, rgb: &mut [f32]) {
+        for px in rgb.chunks_exact_mut(3) {
+            let mut v = Vec3::new(px[0], px[1], px[2]) * scale;
+            if let Some(m) = white_balance {
+                v = m * v;
+            }
+            px.copy_from_slice(&v.to_array());
+        }
+    }
 }
 
 /// Refuses absurd film sizes before anything is allocated.
@@ -49,6 +67,7 @@ pub fn build_options(
     let mut crop = [0.0f32, 1.0, 0.0, 1.0];
     let mut filename = None;
     let mut imaging_scale = 1.0;
+    let mut white_balance = None;
     let mut film_loc = Loc::none();
     if let Some(f) = &desc.film {
         film_loc = f.loc.clone();
@@ -86,18 +105,22 @@ pub fn build_options(
         let iso = p.get_float("iso", 100.0)?;
         let exposure = p.get_float("exposuretime", 1.0)?;
         imaging_scale = iso / 100.0 * exposure;
-        w.unsupported(
-            p,
-            &[
-                "sensor",
-                "whitebalance",
-                "savefp16",
-                "diagonal",
-                "maxcomponentvalue",
-            ],
-            "film",
-            "ignored",
-        );
+        let wb = p.get_float("whitebalance", 0.0)?;
+        if wb != 0.0 {
+            if !(wb > 0.0) {
+                return Err(Diagnostic::error(
+                    &p.loc_of("whitebalance").unwrap_or_else(|| f.loc.clone()),
+                    format!("whitebalance must be a positive temperature in kelvin, found {wb}"),
+                ));
+            }
+            white_balance = Some(lumis_math::spectrum::white_balance(wb as f64));
+        }
+        // Camera sensors (measured response curves) are not modelled.
+        let mut ignored = vec!["savefp16", "diagonal", "maxcomponentvalue"];
+        if p.get_string("sensor", "cie1931")? != "cie1931" {
+            ignored.push("sensor");
+        }
+        w.unsupported(p, &ignored, "film", "ignored");
         w.unused(
             p,
             "film \"rgb\"",
@@ -108,6 +131,8 @@ pub fn build_options(
                 "filename",
                 "iso",
                 "exposuretime",
+                "whitebalance",
+                "sensor",
             ],
         );
     }
@@ -229,6 +254,7 @@ pub fn build_options(
         integrator_entity: desc.integrator.clone(),
         filename,
         imaging_scale,
+        white_balance,
     })
 }
 
