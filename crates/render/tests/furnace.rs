@@ -116,6 +116,20 @@ fn white_diffuse_sphere_in_white_furnace() {
     );
 }
 
+/// A white diffuse base under a smooth clear coat over a non-absorbing slab
+/// reflects everything (`bsdf_layered.rs`: albedo 1 with the walk's
+/// `maxdepth` 100), so it vanishes in the furnace too: this exercises the
+/// delta coat lobe, the proportional sample densities and MIS in `path`.
+#[test]
+fn white_coated_diffuse_sphere_in_white_furnace() {
+    lossless_object(
+        r#"Material "coateddiffuse" "rgb reflectance" [ 1 1 1 ] "rgb albedo" [ 1 1 1 ]
+    "float thickness" [ 0.05 ] "integer maxdepth" [ 100 ]"#,
+        32,
+        "white coated diffuse",
+    );
+}
+
 /// The photon integrator in the closed diffuse sphere: emission + light
 /// sampling + final gathering on the global map. The density estimate is
 /// unbiased in a uniform photon field (the boundary photon is left out), but

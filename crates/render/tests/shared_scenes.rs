@@ -45,15 +45,6 @@ const EXPECTED: &[(&str, &str)] = &[
         "has no \"numiterations\"",
         "pbrt-v4 --upgrade warns the same",
     ),
-    // Issue 3 materials not implemented yet (layered BSDF).
-    (
-        "material `coateddiffuse` is not supported yet",
-        "not landed yet",
-    ),
-    (
-        "material `coatedconductor` is not supported yet",
-        "not landed yet",
-    ),
 ];
 
 #[test]

@@ -8,7 +8,7 @@
 
 use super::fresnel::{fr_dielectric, reflect, refract};
 use super::microfacet::TrowbridgeReitz;
-use super::{reflect_z, same_hemisphere, BsdfSample, TransportMode};
+use super::{reflect_z, same_hemisphere, BsdfSample, Lobes, TransportMode};
 use lumis_math::{sqr, Rgb, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,6 +101,11 @@ impl Dielectric {
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.pdf_lobes(wo, wi, Lobes::All)
+    }
+
+    /// [`Self::pdf`] of [`Self::sample_lobes`] restricted to `lobes`.
+    pub fn pdf_lobes(&self, wo: Vec3, wi: Vec3, lobes: Lobes) -> f32 {
         if self.is_delta() {
             return 0.0;
         }
@@ -108,29 +113,51 @@ impl Dielectric {
             return 0.0;
         };
         let r = pair_fresnel(self.eta, wo, wi, wm, reflect);
-        let t = 1.0 - r;
+        let (p_r, p_t) = lobes.choice(r);
         if reflect {
-            self.distrib.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * r
+            self.distrib.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * p_r
         } else {
             let denom = sqr(wi.dot(wm) + wo.dot(wm) / etap);
             let dwm_dwi = wi.dot(wm).abs() / denom;
-            self.distrib.pdf(wo, wm) * dwm_dwi * t
+            self.distrib.pdf(wo, wm) * dwm_dwi * p_t
         }
     }
 
     pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+        self.sample_lobes(wo, uc, u, mode, Lobes::All)
+    }
+
+    /// Sample only reflection or only transmission (pbrt-v4's sample flags):
+    /// the lobe is chosen by its Fresnel weight among the allowed ones.
+    pub fn sample_lobes(
+        &self,
+        wo: Vec3,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+        lobes: Lobes,
+    ) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
         }
         if self.is_delta() {
-            self.sample_smooth(wo, uc, mode)
+            self.sample_smooth(wo, uc, mode, lobes)
         } else {
-            self.sample_rough(wo, uc, u, mode)
+            self.sample_rough(wo, uc, u, mode, lobes)
         }
     }
 
-    fn sample_smooth(&self, wo: Vec3, uc: f32, mode: TransportMode) -> Option<BsdfSample> {
+    fn sample_smooth(
+        &self,
+        wo: Vec3,
+        uc: f32,
+        mode: TransportMode,
+        lobes: Lobes,
+    ) -> Option<BsdfSample> {
         if self.eta == 1.0 {
+            if lobes == Lobes::Reflection {
+                return None;
+            }
             // Index-matched: the interface does not exist.
             return Some(BsdfSample {
                 wi: -wo,
@@ -143,12 +170,16 @@ impl Dielectric {
         }
         let r = fr_dielectric(wo.z, self.eta);
         let t = 1.0 - r;
-        if uc < r {
+        let (p_r, p_t) = lobes.choice(r);
+        if p_r + p_t <= 0.0 {
+            return None;
+        }
+        if uc < p_r {
             let wi = reflect_z(wo);
             return Some(BsdfSample {
                 wi,
                 f: Rgb::splat(r / wi.z.abs()),
-                pdf: r,
+                pdf: p_r,
                 delta: true,
                 transmission: false,
                 eta: 1.0,
@@ -162,24 +193,35 @@ impl Dielectric {
         Some(BsdfSample {
             wi,
             f: Rgb::splat(ft),
-            pdf: t,
+            pdf: p_t,
             delta: true,
             transmission: true,
             eta: etap,
         })
     }
 
-    fn sample_rough(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+    fn sample_rough(
+        &self,
+        wo: Vec3,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+        lobes: Lobes,
+    ) -> Option<BsdfSample> {
         let wm = self.distrib.sample_wm(wo, u);
         let r = fr_dielectric(wo.dot(wm), self.eta);
         let t = 1.0 - r;
+        let (p_r, p_t) = lobes.choice(r);
+        if p_r + p_t <= 0.0 {
+            return None;
+        }
         let (cos_o, d, pdf_wm) = (wo.z, self.distrib.d(wm), self.distrib.pdf(wo, wm));
-        if uc < r {
+        if uc < p_r {
             let wi = reflect(wo, wm);
             if !same_hemisphere(wo, wi) {
                 return None;
             }
-            let pdf = pdf_wm / (4.0 * wo.dot(wm).abs()) * r;
+            let pdf = pdf_wm / (4.0 * wo.dot(wm).abs()) * p_r;
             let f = d * self.distrib.g(wo, wi) * r / (4.0 * wi.z * cos_o).abs();
             return Some(BsdfSample {
                 wi,
@@ -196,7 +238,7 @@ impl Dielectric {
         }
         let denom = sqr(wi.dot(wm) + wo.dot(wm) / etap);
         let dwm_dwi = wi.dot(wm).abs() / denom;
-        let pdf = pdf_wm * dwm_dwi * t;
+        let pdf = pdf_wm * dwm_dwi * p_t;
         let mut ft = t
             * d
             * self.distrib.g(wo, wi)

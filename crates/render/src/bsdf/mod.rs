@@ -12,6 +12,7 @@ mod dielectric;
 mod diffuse;
 mod diffuse_transmission;
 pub mod fresnel;
+pub mod layered;
 pub mod microfacet;
 mod phong;
 mod thin_dielectric;
@@ -20,6 +21,7 @@ pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use diffuse_transmission::DiffuseTransmission;
+pub use layered::Layered;
 pub use phong::Phong;
 pub use thin_dielectric::ThinDielectric;
 
@@ -33,6 +35,28 @@ pub enum TransportMode {
     Importance,
 }
 
+/// Which lobes a sample may come from (pbrt-v4's `BxDFReflTransFlags`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lobes {
+    All,
+    Reflection,
+    Transmission,
+}
+
+impl Lobes {
+    /// Probabilities of choosing reflection and transmission when the
+    /// Fresnel reflectance is `r`, renormalised over the allowed lobes.
+    #[inline]
+    pub fn choice(self, r: f32) -> (f32, f32) {
+        match self {
+            Lobes::All => (r, 1.0 - r),
+            Lobes::Reflection if r > 0.0 => (1.0, 0.0),
+            Lobes::Transmission if r < 1.0 => (0.0, 1.0),
+            _ => (0.0, 0.0),
+        }
+    }
+}
+
 /// Result of [`Bsdf::sample`].
 #[derive(Clone, Copy, Debug)]
 pub struct BsdfSample {
@@ -43,7 +67,11 @@ pub struct BsdfSample {
     /// value divided by `|cos wi|`.
     pub f: Rgb,
     /// Solid-angle density; for delta lobes the discrete probability of the
-    /// chosen lobe.
+    /// chosen lobe. When [`Bsdf::pdf_is_proportional`], a non-delta sample's
+    /// `pdf` from [`Bsdf::sample`] is only proportional to the density (only
+    /// `f / pdf` is meaningful); [`SurfaceBsdf::sample`] replaces it by
+    /// [`Bsdf::pdf`] and scales `f` alike, so integrators see one density
+    /// for MIS from both strategies.
     pub pdf: f32,
     /// A perfectly specular lobe was sampled.
     pub delta: bool,
@@ -62,6 +90,7 @@ pub enum Bsdf {
     Phong(Phong),
     ThinDielectric(ThinDielectric),
     DiffuseTransmission(DiffuseTransmission),
+    Layered(Layered),
 }
 
 impl Bsdf {
@@ -74,13 +103,14 @@ impl Bsdf {
             Bsdf::Phong(b) => b.eval(wo, wi),
             Bsdf::ThinDielectric(_) => Rgb::BLACK,
             Bsdf::DiffuseTransmission(b) => b.eval(wo, wi),
+            Bsdf::Layered(b) => b.eval(wo, wi, mode),
         }
     }
 
     /// Solid-angle density with which [`Self::sample`] produces `wi` through
     /// its non-delta lobes.
+    /// For [`Bsdf::Layered`] a stochastic (hashed, deterministic) estimate.
     pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
-        let _ = mode; // Densities do not depend on the transport mode.
         match self {
             Bsdf::Diffuse(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
@@ -88,7 +118,14 @@ impl Bsdf {
             Bsdf::Phong(b) => b.pdf(wo, wi),
             Bsdf::ThinDielectric(_) => 0.0,
             Bsdf::DiffuseTransmission(b) => b.pdf(wo, wi),
+            Bsdf::Layered(b) => b.pdf(wo, wi, mode),
         }
+    }
+
+    /// Non-delta samples carry a density only proportional to the true one
+    /// (pbrt-v4's `pdfIsProportional`): the layered BSDF's random walk.
+    pub fn pdf_is_proportional(&self) -> bool {
+        matches!(self, Bsdf::Layered(_))
     }
 
     /// Sample an incident direction given the outgoing one. `uc` chooses
@@ -104,6 +141,7 @@ impl Bsdf {
             Bsdf::Phong(b) => b.sample(wo, uc, u),
             Bsdf::ThinDielectric(b) => b.sample(wo, uc),
             Bsdf::DiffuseTransmission(b) => b.sample(wo, uc, u),
+            Bsdf::Layered(b) => b.sample(wo, uc, u, mode),
         }?;
         if bs.f.is_black()
             || !bs.f.is_finite()
@@ -123,6 +161,17 @@ impl Bsdf {
             Bsdf::ThinDielectric(_) => true,
             Bsdf::Conductor(b) => b.is_delta(),
             Bsdf::Dielectric(b) => b.is_delta(),
+            Bsdf::Layered(b) => b.is_delta(),
+        }
+    }
+
+    /// Not delta, yet some samples are delta (a smooth coat over a rough or
+    /// diffuse base): `eval` and `pdf` leave that lobe out, so integrators
+    /// must follow delta samples as they follow delta BSDFs.
+    pub fn has_delta_lobe(&self) -> bool {
+        match self {
+            Bsdf::Layered(b) => !b.is_delta() && b.has_delta_lobe(),
+            _ => false,
         }
     }
 
@@ -147,6 +196,7 @@ impl Bsdf {
                 !b.is_delta() && b.distrib.alpha_x.max(b.distrib.alpha_y) < GLOSSY_ALPHA
             }
             Bsdf::Phong(b) => b.exponent > GLOSSY_EXPONENT && b.ks.max_component() > 0.0,
+            Bsdf::Layered(b) => b.is_glossy(),
         }
     }
 
@@ -177,6 +227,11 @@ impl From<Conductor> for Bsdf {
 impl From<Dielectric> for Bsdf {
     fn from(b: Dielectric) -> Self {
         Bsdf::Dielectric(b)
+    }
+}
+impl From<Layered> for Bsdf {
+    fn from(b: Layered) -> Self {
+        Bsdf::Layered(b)
     }
 }
 impl From<Phong> for Bsdf {
@@ -258,11 +313,28 @@ impl SurfaceBsdf {
         if !self.sides_allowed(wo, bs.wi) {
             return None;
         }
+        if !bs.delta && self.bsdf.pdf_is_proportional() {
+            // As pbrt-v4's integrators do for proportional densities: MIS
+            // needs the density that `pdf` gives for this direction (the
+            // same world-space vectors, hence the same hashed estimate), and
+            // the weight `f / pdf` is kept.
+            let pdf = self.pdf(wo, bs.wi, mode);
+            if !(pdf > 0.0) {
+                return None;
+            }
+            bs.f *= pdf / bs.pdf;
+            bs.pdf = pdf;
+        }
         Some(bs)
     }
 
     pub fn is_delta(&self) -> bool {
         self.bsdf.is_delta()
+    }
+
+    /// See [`Bsdf::has_delta_lobe`].
+    pub fn has_delta_lobe(&self) -> bool {
+        self.bsdf.has_delta_lobe()
     }
 
     pub fn is_glossy(&self) -> bool {

@@ -45,11 +45,18 @@ pub fn li(
         let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
             return l;
         };
-        if bs.pdf == 0.0 || bs.delta {
+        if bs.pdf == 0.0 {
             return l;
         }
         let weight = beta * bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
         let next = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
+        if bs.delta {
+            // The delta lobe of a mixed BSDF (a smooth coat): light sampling
+            // cannot find it, so it continues like a specular chain.
+            beta = weight;
+            ray = next;
+            continue;
+        }
         rays.indirect += 1;
         match scene.intersect(&next) {
             Some(h2) => l += weight * emitted_mis(scene, &h2, &next, hit.geom.p, bs.pdf, false),

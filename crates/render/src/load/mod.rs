@@ -6,6 +6,7 @@ mod area_lights;
 mod envmap;
 mod lights;
 mod materials;
+mod materials_coated;
 mod materials_layered;
 mod materials_transmissive;
 mod mesh;

@@ -5,6 +5,9 @@
 //! pbrt-v4 allows to be textures are [`TexRgb`](crate::texture::TexRgb) /
 //! [`TexFloat`](crate::texture::TexFloat).
 
+mod coat;
+mod coated_conductor;
+mod coated_diffuse;
 pub mod conductor;
 mod dielectric;
 mod diffuse;
@@ -17,6 +20,9 @@ pub mod shading;
 pub mod spectra;
 mod thin_dielectric;
 
+pub use coat::Coat;
+pub use coated_conductor::CoatedConductorMaterial;
+pub use coated_diffuse::CoatedDiffuseMaterial;
 pub use conductor::{ConductorMaterial, ConductorSpec};
 pub use dielectric::DielectricMaterial;
 pub use diffuse::DiffuseMaterial;
@@ -43,6 +49,8 @@ pub enum MaterialKind {
     Interface(InterfaceMaterial),
     ThinDielectric(ThinDielectricMaterial),
     DiffuseTransmission(DiffuseTransmissionMaterial),
+    CoatedDiffuse(CoatedDiffuseMaterial),
+    CoatedConductor(CoatedConductorMaterial),
 }
 
 /// A material and how it bends the shading normal (bump or normal map).
@@ -72,6 +80,8 @@ impl Material {
             MaterialKind::Interface(m) => m.bsdf(),
             MaterialKind::ThinDielectric(m) => m.bsdf(),
             MaterialKind::DiffuseTransmission(m) => m.bsdf(t, c),
+            MaterialKind::CoatedDiffuse(m) => m.bsdf(t, c),
+            MaterialKind::CoatedConductor(m) => m.bsdf(t, c),
             // Resolved by `surface_bsdf` before a BSDF is asked for.
             MaterialKind::Mix(_) => Bsdf::Diffuse(crate::bsdf::Diffuse::new(Rgb::BLACK)),
         }

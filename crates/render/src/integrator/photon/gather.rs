@@ -43,6 +43,7 @@ pub fn li(
     let scene = ctx.scene;
     let mut l = Rgb::BLACK;
     let mut beta = Rgb::WHITE;
+    let mut first = true;
     for depth in 0..=ctx.s.max_depth {
         if depth == 0 {
             rays.camera += 1;
@@ -64,21 +65,43 @@ pub fn li(
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
-        let alpha = alpha_at(ctx.s, ctx.alpha_first, true);
-        return l + beta
-            * shade(
-                ctx,
-                &hit,
-                &bsdf,
-                wo,
-                alpha,
-                ctx.s.gather_rays,
-                depth,
-                sampler,
-                rays,
-            );
+        let alpha = alpha_at(ctx.s, ctx.alpha_first, first);
+        let m2 = ctx.s.gather_rays;
+        l += beta * shade(ctx, &hit, &bsdf, wo, alpha, m2, depth, sampler, rays);
+        // `shade` covers the non-delta part; a BSDF with a delta lobe (a
+        // smooth coat) also continues along one sample when it is delta.
+        match delta_lobe_sample(&hit, &bsdf, wo, sampler) {
+            Some((weight, next)) => {
+                beta *= weight;
+                ray = next;
+                first = false;
+            }
+            None => return l,
+        }
     }
     l
+}
+
+/// For a non-delta BSDF with a delta lobe: one BSDF sample, kept (weight
+/// and continuation ray) only when it is delta. The delta part's estimate is
+/// then unbiased, and the non-delta part is estimated elsewhere by samples
+/// that skip delta ones.
+fn delta_lobe_sample(
+    hit: &Hit,
+    bsdf: &SurfaceBsdf,
+    wo: Vec3,
+    sampler: &mut Sampler,
+) -> Option<(Rgb, Ray)> {
+    if !bsdf.has_delta_lobe() {
+        return None;
+    }
+    let (uc, u) = (sampler.get_1d(), sampler.get_2d());
+    let bs = bsdf.sample(wo, uc, u, TransportMode::Radiance)?;
+    if !bs.delta {
+        return None;
+    }
+    let weight = bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+    Some((weight, spawn_ray(hit.geom.p, hit.geom.ng, bs.wi)))
 }
 
 /// `alpha` of `q_1` at a shading point (seed, A.10): the samples per pixel at
@@ -168,12 +191,13 @@ fn trace_gather(
     let s = ctx.s;
     let mut ray = spawn_ray(x.geom.p, x.geom.ng, g.wi);
     let mut t = Rgb::WHITE;
+    let mut acc = Rgb::BLACK;
     let mut specular = false;
     for d in depth + 1..=s.max_depth {
         rays.gather += 1;
         let Some(h) = scene.intersect(&ray) else {
             if !specular {
-                return escaped_mis_n(scene, &ray, x.geom.p, g.m2 as f32, g.pdf, false);
+                return acc + escaped_mis_n(scene, &ray, x.geom.p, g.m2 as f32, g.pdf, false);
             }
             // Caustic from an environment through a specular chain.
             let mut sum = Rgb::BLACK;
@@ -192,7 +216,7 @@ fn trace_gather(
                 };
                 sum += le * caustic_gather_weight(ctx, g, le.luminance(), flux);
             }
-            return t * sum;
+            return acc + t * sum;
         };
         // Emission found here: direct light (MIS with light sampling) or, after
         // a specular chain, a caustic sample (the seed's w_2). The surface may
@@ -215,7 +239,7 @@ fn trace_gather(
         if bsdf.is_delta() {
             let (uc, u) = (sampler.get_1d(), sampler.get_2d());
             let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
-                return Rgb::BLACK;
+                return acc;
             };
             let weight = bs.f * (bs.wi.dot(h.geom.ns).abs() / bs.pdf);
             // Roulette with survival = the bounce's transmittance gamma (measured
@@ -228,23 +252,37 @@ fn trace_gather(
             };
             let gamma = (weight * eta2).luminance().min(1.0);
             if !(gamma > 0.0) || sampler.get_1d() >= gamma {
-                return t * emitted;
+                return acc + t * emitted;
             }
             if !emitted.is_black() {
-                return t * emitted; // a specular emitter: its emission ends the chain
+                return acc + t * emitted; // a specular emitter: its emission ends the chain
             }
             t *= weight / gamma;
             specular = true;
             ray = spawn_ray(h.geom.p, h.geom.ng, bs.wi);
             continue;
         }
-        if bsdf.is_glossy() && d < s.max_depth {
+        let here = if bsdf.is_glossy() && d < s.max_depth {
             let alpha = alpha_at(s, ctx.alpha_first, false);
-            return t * (emitted + shade(ctx, &h, &bsdf, wo, alpha, 1, d, sampler, rays));
+            emitted + shade(ctx, &h, &bsdf, wo, alpha, 1, d, sampler, rays)
+        } else {
+            emitted + global_radiance(ctx, &h, &bsdf, wo)
+        };
+        acc += t * here;
+        // A delta lobe on this non-delta surface (a smooth coat) continues
+        // the chain as a specular bounce, with the same roulette.
+        let Some((weight, next)) = delta_lobe_sample(&h, &bsdf, wo, sampler) else {
+            return acc;
+        };
+        let gamma = weight.luminance().min(1.0);
+        if !(gamma > 0.0) || sampler.get_1d() >= gamma {
+            return acc;
         }
-        return t * (emitted + global_radiance(ctx, &h, &bsdf, wo));
+        t *= weight / gamma;
+        specular = true;
+        ray = next;
     }
-    Rgb::BLACK
+    acc
 }
 
 /// `w_2` of a gather ray that reached an emitter of luminance `le` through a specular chain.

@@ -147,7 +147,10 @@ fn trace_one(
                         out.photons.push(Photon::new(hit.geom.p, power, wo, le_lum));
                         out.normals.push(n);
                     }
-                    return;
+                    // A delta lobe (smooth coat) may still carry the caustic on.
+                    if !bsdf.has_delta_lobe() {
+                        return;
+                    }
                 }
             }
         }
@@ -165,6 +168,9 @@ fn trace_one(
         }
         power *= weight / survive;
         if !bs.delta {
+            if kind == MapKind::Caustic {
+                return;
+            }
             specular_only = false;
         }
         ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
