@@ -95,7 +95,7 @@ fn blackbody_area_light_renders_its_colour_at_luminance_scale() {
 }
 
 #[test]
-fn point_light_power_keeps_scale_and_counts_rgb_as_white() {
+fn light_power_and_illuminance_keep_scale_and_count_rgb_as_white() {
     let point = |params: &str| {
         let l = load(
             &format!("{HEAD}LightSource \"point\" {params}\n"),
@@ -120,6 +120,33 @@ fn point_light_power_keeps_scale_and_counts_rgb_as_white() {
         1e-6,
         "rgb",
     );
+    // Spot: power over 2 pi (1 - cos start + (cos start - cos end) / 2).
+    let l = load(
+        &format!(
+            "{HEAD}LightSource \"spot\" \"blackbody I\" [ 4000 ] \"float scale\" [ 2 ] \
+             \"float power\" [ 30 ] \"float coneangle\" [ 40 ] \"float conedelta\" [ 10 ]\n"
+        ),
+        &Default::default(),
+    );
+    let Light::Spot(spot) = &l.scene.lights[0] else {
+        panic!("not a spot light")
+    };
+    let (c0, c1) = (30f32.to_radians().cos(), 40f32.to_radians().cos());
+    let k_e = 2.0 * PI * ((1.0 - c0) + (c0 - c1) / 2.0);
+    let want = 2.0 * 30.0 / k_e;
+    assert!((spot.intensity.luminance() - want).abs() < 2e-3 * want);
+    // Distant: `illuminance` perpendicular to the light, times `scale`.
+    let l = load(
+        &format!(
+            "{HEAD}LightSource \"distant\" \"spectrum L\" \"stdillum-F2\" \"float scale\" [ 2 ] \
+             \"float illuminance\" [ 3 ]\n"
+        ),
+        &Default::default(),
+    );
+    let Light::Distant(d) = &l.scene.lights[0] else {
+        panic!("not a distant light")
+    };
+    assert!((d.l.luminance() - 6.0).abs() < 0.01, "{:?}", d.l);
 }
 
 #[test]
