@@ -1,0 +1,83 @@
+//! Coated materials through `photon` against `path` (the reference) on a
+//! small scene with a smooth-coated diffuse floor
+//! (a delta coat lobe inside a non-delta BSDF: its reflection of the light is
+//! found only by following delta samples) and a rough-coated rough-gold sphere
+//! (proportional sample densities, glossy recursion of the final gather).
+
+mod support;
+
+use lumis_render::load::BuildOverrides;
+use support::*;
+
+fn scene(integrator: &str, maxdepth: u32) -> String {
+    format!(
+        r#"Integrator "{integrator}" "integer maxdepth" [ {maxdepth} ]
+Sampler "independent"
+PixelFilter "box"
+Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 24 ]
+LookAt 0 2.2 5  0 0 -1  0 1 0
+Camera "perspective" "float fov" [ 40 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 6 6 6 ]
+  Translate 0 2.5 -1.5
+  Rotate 90 1 0 0
+  Shape "disk" "float radius" [ 0.7 ]
+AttributeEnd
+Material "coateddiffuse" "rgb reflectance" [ 0.6 0.4 0.3 ]
+Shape "trianglemesh" "point3 P" [ -4 0 -4  4 0 -4  4 0 4  -4 0 4 ] "integer indices" [ 0 2 1  0 3 2 ]
+Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+Shape "trianglemesh" "point3 P" [ -4 0 -2.5  4 0 -2.5  4 4 -2.5  -4 4 -2.5 ] "integer indices" [ 0 1 2  0 2 3 ]
+AttributeBegin
+  Material "coatedconductor" "float interface.roughness" [ 0.05 ] "float conductor.roughness" [ 0.02 ]
+    "rgb conductor.eta" [ 0.14 0.37 1.44 ] "rgb conductor.k" [ 3.98 2.38 1.6 ]
+  Translate 0.3 0.7 0
+  Shape "sphere" "float radius" [ 0.7 ]
+AttributeEnd
+"#
+    )
+}
+
+/// Per-pixel means of a render and their variances.
+fn render(integrator: &str, maxdepth: u32, spp: u32) -> Vec<(f64, f64)> {
+    let l = load(&scene(integrator, maxdepth), &BuildOverrides::default());
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+    let out = render_loaded(&l, spp, 3, 0);
+    assert_eq!(out.bad_samples, 0, "{integrator}: NaN/inf samples");
+    out.film
+        .pixels
+        .iter()
+        .map(|p| {
+            let m = (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0;
+            (m, p.variance_of_mean().average() as f64)
+        })
+        .collect()
+}
+
+/// Image means of two renders of the same scene and the standard error of
+/// their difference (pixels are independent; the image's own variation
+/// cancels).
+fn compare(a: &[(f64, f64)], b: &[(f64, f64)]) -> (f64, f64, f64) {
+    let n = a.len() as f64;
+    let (ma, mb) = (
+        a.iter().map(|p| p.0).sum::<f64>() / n,
+        b.iter().map(|p| p.0).sum::<f64>() / n,
+    );
+    let var = a.iter().chain(b).map(|p| p.1).sum::<f64>() / (n * n);
+    (ma, mb, var.sqrt())
+}
+
+/// `photon` agrees with `path` within the photon-map bias bound the other
+/// consistency tests use (3%) plus 4.5 standard errors. Measured: -1.2%
+/// (standard error of the difference 1.4%); with the gather's following of
+/// the floor coat's delta lobe switched off (the light's mirror image is in
+/// view), -12.7%.
+#[test]
+fn photon_agrees_with_path_on_coated_surfaces() {
+    let (p, ph, se) = compare(&render("path", 5, 2048), &render("photon", 5, 64));
+    eprintln!(
+        "path {p:.5}, photon {ph:.5} ({:+.2}%), se of difference {se:.5}",
+        100.0 * (ph / p - 1.0)
+    );
+    assert!((ph - p).abs() < 0.03 * p + 4.5 * se, "photon vs path");
+}
