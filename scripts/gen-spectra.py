@@ -47,6 +47,6 @@ with open(out + '/illum.rs', 'w') as f:
     f.write(table('D50', ill['D50'], 'CIE illuminant D50'))
     for i in range(1, 13):
         f.write(table('F%d' % i, ill['FL%d' % i], 'CIE fluorescent illuminant F%d' % i))
-    for n in ['S0', 'S1', 'S2']:
-        sd = basis[n].copy().align(colour.SpectralShape(300, 830, 10))
-        f.write(table('D_' + n, sd, 'CIE daylight basis function %s' % n))
+    parts = [table('D_' + n, basis[n].copy().align(colour.SpectralShape(300, 830, 10)),
+                   'CIE daylight basis function %s' % n) for n in ['S0', 'S1', 'S2']]
+    f.write(''.join(parts).rstrip('\n') + '\n')
