@@ -1,5 +1,5 @@
-//! Coated materials through `photon` against `path` (the reference) on a
-//! small scene with a smooth-coated diffuse floor
+//! Coated materials through `photon` and `direct` against `path` (the
+//! reference) on a small scene with a smooth-coated diffuse floor
 //! (a delta coat lobe inside a non-delta BSDF: its reflection of the light is
 //! found only by following delta samples) and a rough-coated rough-gold sphere
 //! (proportional sample densities, glossy recursion of the final gather).
@@ -10,6 +10,19 @@ use lumis_render::load::BuildOverrides;
 use support::*;
 
 fn scene(integrator: &str, maxdepth: u32) -> String {
+    scene_with(integrator, maxdepth, WALL_AND_SPHERE)
+}
+
+const WALL_AND_SPHERE: &str = r#"Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+Shape "trianglemesh" "point3 P" [ -4 0 -2.5  4 0 -2.5  4 4 -2.5  -4 4 -2.5 ] "integer indices" [ 0 1 2  0 2 3 ]
+AttributeBegin
+  Material "coatedconductor" "float interface.roughness" [ 0.05 ] "float conductor.roughness" [ 0.02 ]
+    "rgb conductor.eta" [ 0.14 0.37 1.44 ] "rgb conductor.k" [ 3.98 2.38 1.6 ]
+  Translate 0.3 0.7 0
+  Shape "sphere" "float radius" [ 0.7 ]
+AttributeEnd"#;
+
+fn scene_with(integrator: &str, maxdepth: u32, rest: &str) -> String {
     format!(
         r#"Integrator "{integrator}" "integer maxdepth" [ {maxdepth} ]
 Sampler "independent"
@@ -26,21 +39,18 @@ AttributeBegin
 AttributeEnd
 Material "coateddiffuse" "rgb reflectance" [ 0.6 0.4 0.3 ]
 Shape "trianglemesh" "point3 P" [ -4 0 -4  4 0 -4  4 0 4  -4 0 4 ] "integer indices" [ 0 2 1  0 3 2 ]
-Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
-Shape "trianglemesh" "point3 P" [ -4 0 -2.5  4 0 -2.5  4 4 -2.5  -4 4 -2.5 ] "integer indices" [ 0 1 2  0 2 3 ]
-AttributeBegin
-  Material "coatedconductor" "float interface.roughness" [ 0.05 ] "float conductor.roughness" [ 0.02 ]
-    "rgb conductor.eta" [ 0.14 0.37 1.44 ] "rgb conductor.k" [ 3.98 2.38 1.6 ]
-  Translate 0.3 0.7 0
-  Shape "sphere" "float radius" [ 0.7 ]
-AttributeEnd
+{rest}
 "#
     )
 }
 
 /// Per-pixel means of a render and their variances.
 fn render(integrator: &str, maxdepth: u32, spp: u32) -> Vec<(f64, f64)> {
-    let l = load(&scene(integrator, maxdepth), &BuildOverrides::default());
+    render_text(&scene(integrator, maxdepth), integrator, spp)
+}
+
+fn render_text(text: &str, integrator: &str, spp: u32) -> Vec<(f64, f64)> {
+    let l = load(text, &BuildOverrides::default());
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);
     let out = render_loaded(&l, spp, 3, 0);
     assert_eq!(out.bad_samples, 0, "{integrator}: NaN/inf samples");
@@ -80,4 +90,21 @@ fn photon_agrees_with_path_on_coated_surfaces() {
         100.0 * (ph / p - 1.0)
     );
     assert!((ph - p).abs() < 0.03 * p + 4.5 * se, "photon vs path");
+}
+
+/// `direct` continues along the smooth coat's delta samples: with only the
+/// light and the coated floor, `direct` and `path` at `maxdepth` 1 estimate
+/// the same thing (light sampling and BSDF sampling at the floor, plus the
+/// light's mirror image in the coat). Measured: z -0.2; with delta samples
+/// dropped instead (as before coated materials), `direct` is 35% darker
+/// (z -25).
+#[test]
+fn direct_follows_the_coat_lobe() {
+    let (p, d, se) = compare(
+        &render_text(&scene_with("path", 1, ""), "path", 512),
+        &render_text(&scene_with("direct", 1, ""), "direct", 512),
+    );
+    let z = (d - p) / se;
+    eprintln!("path {p:.5}, direct {d:.5}, se {se:.5}, z {z:.2}");
+    assert!(z.abs() < 4.5, "direct vs path: z {z}");
 }
