@@ -269,3 +269,47 @@ fn textured_photon_origins_follow_the_image() {
     );
     assert!(hi / lo < 1.5, "photon powers differ: {lo} .. {hi}");
 }
+
+/// Caustic photons from a textured quad through a glass sphere onto a black
+/// floor, emitted everywhere or aimed at the sphere: the same caustic flux
+/// (a Z-test between the two sums), many more photons stored when aimed.
+#[test]
+fn aimed_caustic_photons_from_a_textured_light() {
+    use lumis_render::integrator::photon::aim::Targets;
+    let path = image("ph-aim.exr", 2, 1, &[A, B]);
+    let text = format!(
+        "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nAttributeBegin\nTranslate 0 0 2\nAreaLightSource \"diffuse\" \"string filename\" \"{}\"\nMaterial \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\nShape \"trianglemesh\" \"point3 P\" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ] \"integer indices\" [ 0 2 1 0 3 2 ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]\nAttributeEnd\nAttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate 0.3 0 1\nShape \"sphere\" \"float radius\" [ 0.3 ]\nAttributeEnd\nMaterial \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\nShape \"trianglemesh\" \"point3 P\" [ -9 -9 0  9 -9 0  9 9 0  -9 9 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n",
+        path.display()
+    );
+    let l = load(&text, &Default::default());
+    let targets = Targets::from_scene(&l.scene);
+    assert!(!targets.is_empty());
+    let n = 200_000;
+    let sums: Vec<(f64, f64, usize)> = [None, Some(&targets)]
+        .into_iter()
+        .map(|t| {
+            let tr = trace_photons(&l.scene, n, MapKind::Caustic, 7, 5, t);
+            let p: Vec<f64> = tr
+                .photons
+                .iter()
+                .map(|p| p.power().luminance() as f64)
+                .collect();
+            let s: f64 = p.iter().sum();
+            let s2: f64 = p.iter().map(|x| x * x).sum();
+            // The sum of n per-photon contributions (most of them zero).
+            (s, (s2 - s * s / n as f64).max(0.0).sqrt(), p.len())
+        })
+        .collect();
+    let (plain, aimed) = (sums[0], sums[1]);
+    let z = (aimed.0 - plain.0) / (plain.1 * plain.1 + aimed.1 * aimed.1).sqrt();
+    eprintln!(
+        "caustic flux: plain {:.5} ± {:.5} ({} photons), aimed {:.5} ± {:.5} ({} photons), z {z:+.2}",
+        plain.0, plain.1, plain.2, aimed.0, aimed.1, aimed.2
+    );
+    assert!(
+        z.abs() < 4.5,
+        "aimed and plain caustic fluxes differ: z {z:.1}"
+    );
+    assert!(plain.1 < 0.05 * plain.0, "too noisy");
+    assert!(aimed.2 > 3 * plain.2, "aiming stores more caustic photons");
+}
