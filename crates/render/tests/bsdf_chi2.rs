@@ -8,6 +8,7 @@ use common::chi2::{self, Chi2Config};
 use lumis_math::{sampling::square_to_uniform_sphere, Pcg32, Rgb, Vec2, Vec3};
 use lumis_render::bsdf::{
     fresnel::{fr_complex_rgb, fr_dielectric},
+    microfacet::Microfacet,
     Bsdf, Conductor, Dielectric, Diffuse, DiffuseTransmission, Phong, ThinDielectric,
     TransportMode,
 };
@@ -63,6 +64,23 @@ fn conductor_cases() -> Vec<Case> {
         wo: dir(-0.5),
         z_breaks: vec![],
     });
+    // Beckmann: sampled by D cos, not by visible normals.
+    for (ax, ay) in [(0.05, 0.05), (0.3, 0.3), (0.1, 0.4)] {
+        for c in [0.9, 0.5, 0.1, -0.5] {
+            let m = Microfacet::beckmann(ax, ay);
+            v.push(Case {
+                name: format!("beckmann conductor alpha ({ax}, {ay}) cos_o {c}"),
+                bsdf: Conductor::with_microfacet(
+                    Rgb::new(0.2, 0.9, 1.1),
+                    Rgb::new(3.9, 2.4, 2.2),
+                    m,
+                )
+                .into(),
+                wo: dir(c),
+                z_breaks: vec![],
+            });
+        }
+    }
     v
 }
 
@@ -96,6 +114,16 @@ fn dielectric_cases() -> Vec<Case> {
             wo: dir(c),
             z_breaks: dielectric_break(1.5, dir(c)),
         });
+    }
+    for (ax, ay) in [(0.2, 0.2), (0.1, 0.3)] {
+        for c in [0.9, 0.3, -0.5, -0.9] {
+            v.push(Case {
+                name: format!("beckmann dielectric eta 1.5 alpha ({ax}, {ay}) cos_o {c}"),
+                bsdf: Dielectric::with_microfacet(1.5, Microfacet::beckmann(ax, ay)).into(),
+                wo: dir(c),
+                z_breaks: dielectric_break(1.5, dir(c)),
+            });
+        }
     }
     v
 }

@@ -5,7 +5,8 @@
 
 use lumis_math::{Pcg32, Rgb, Vec2, Vec3};
 use lumis_render::bsdf::{
-    Bsdf, Conductor, Dielectric, Diffuse, DiffuseTransmission, Phong, ThinDielectric, TransportMode,
+    microfacet::Microfacet, Bsdf, Conductor, Dielectric, Diffuse, DiffuseTransmission, Phong,
+    ThinDielectric, TransportMode,
 };
 
 const SAMPLES: usize = 40_000;
@@ -133,6 +134,12 @@ fn conductors_bounded() {
             ay,
         );
         check_bounded(&format!("gold ({ax}, {ay})"), gold.into(), &BOTH);
+        let beckmann = Conductor::from_reflectance_with(Rgb::WHITE, Microfacet::beckmann(ax, ay));
+        let res_b = check_bounded(
+            &format!("white beckmann conductor ({ax}, {ay})"),
+            beckmann.into(),
+            &BOTH,
+        );
         let white = Conductor::from_reflectance(Rgb::WHITE, ax, ay);
         let res = check_bounded(
             &format!("white conductor ({ax}, {ay})"),
@@ -147,7 +154,7 @@ fn conductors_bounded() {
         } else if ax <= 0.05 {
             // Nearly smooth microfacets lose little energy to single scattering,
             // except at grazing angles where masking bites.
-            for (c, _, m, _) in &res {
+            for (c, _, m, _) in res.iter().chain(&res_b) {
                 if c.abs() >= 0.3 {
                     assert!(m[1] > 0.97, "cos {c}: {}", m[1]);
                 }
@@ -191,11 +198,17 @@ fn rough_dielectric_bounded() {
         for (ax, ay) in params {
             let b: Bsdf = Dielectric::new(eta, ax, ay).into();
             let res = check_bounded(&format!("rough dielectric {eta} ({ax}, {ay})"), b, &BOTH);
+            let bk = Dielectric::with_microfacet(eta, Microfacet::beckmann(ax, ay));
+            let res_b = check_bounded(
+                &format!("rough beckmann dielectric {eta} ({ax}, {ay})"),
+                bk.into(),
+                &BOTH,
+            );
             if ax == 0.1 && ay == 0.1 {
                 // Single-scattering microfacet models lose the energy of
                 // multiply scattered light; at alpha 0.1 this loss is small
                 // except near grazing angles, where masking removes more.
-                for (c, mode, m, _) in res {
+                for (c, mode, m, _) in res.into_iter().chain(res_b) {
                     if c.abs() >= 0.3 {
                         assert!(m[0] > 0.9, "eta {eta} cos {c} {mode:?}: R+T = {}", m[0]);
                     }

@@ -2,7 +2,7 @@
 //! anisotropic Trowbridge-Reitz microfacet surface (pbrt-v4 §9.6).
 
 use super::fresnel::fr_complex_rgb;
-use super::microfacet::TrowbridgeReitz;
+use super::microfacet::Microfacet;
 use super::{reflect_z, same_hemisphere, BsdfSample};
 use lumis_math::{Rgb, Vec2, Vec3};
 
@@ -12,28 +12,34 @@ pub struct Conductor {
     pub eta: Rgb,
     /// Absorption coefficient (imaginary part of the IOR), per channel.
     pub k: Rgb,
-    pub distrib: TrowbridgeReitz,
+    pub distrib: Microfacet,
 }
 
 impl Conductor {
     /// `alpha_x`, `alpha_y`: GGX roughness along the shading frame's tangents;
     /// below 1e-3 the surface is a perfect (delta) mirror.
     pub fn new(eta: Rgb, k: Rgb, alpha_x: f32, alpha_y: f32) -> Self {
-        Conductor {
-            eta,
-            k,
-            distrib: TrowbridgeReitz::new(alpha_x, alpha_y),
-        }
+        Self::with_microfacet(eta, k, Microfacet::trowbridge_reitz(alpha_x, alpha_y))
+    }
+
+    /// A conductor with any microfacet distribution.
+    pub fn with_microfacet(eta: Rgb, k: Rgb, distrib: Microfacet) -> Self {
+        Conductor { eta, k, distrib }
     }
 
     /// A conductor whose normal-incidence reflectance is `r`: `eta = 1`,
     /// `k = 2 sqrt(r) / sqrt(1 - r)` with `r` clamped below 0.9999 (as pbrt-v4).
     pub fn from_reflectance(r: Rgb, alpha_x: f32, alpha_y: f32) -> Self {
+        Self::from_reflectance_with(r, Microfacet::trowbridge_reitz(alpha_x, alpha_y))
+    }
+
+    /// [`Self::from_reflectance`] with any microfacet distribution.
+    pub fn from_reflectance_with(r: Rgb, distrib: Microfacet) -> Self {
         let k = r.map(|v| {
             let v = v.clamp(0.0, 0.9999);
             2.0 * v.sqrt() / (1.0 - v).sqrt()
         });
-        Conductor::new(Rgb::WHITE, k, alpha_x, alpha_y)
+        Conductor::with_microfacet(Rgb::WHITE, k, distrib)
     }
 
     pub fn is_delta(&self) -> bool {
@@ -83,7 +89,7 @@ impl Conductor {
                 eta: 1.0,
             });
         }
-        let wm = self.distrib.sample_wm(wo, u);
+        let wm = self.distrib.sample_wm(wo, u)?;
         let wi = super::fresnel::reflect(wo, wm);
         if !same_hemisphere(wo, wi) {
             return None;

@@ -7,14 +7,14 @@
 //! `wo` is inside, the interface is seen with the inverse ratio.
 
 use super::fresnel::{fr_dielectric, reflect, refract};
-use super::microfacet::TrowbridgeReitz;
+use super::microfacet::Microfacet;
 use super::{reflect_z, same_hemisphere, BsdfSample, Lobes, TransportMode};
 use lumis_math::{sqr, Rgb, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dielectric {
     pub eta: f32,
-    pub distrib: TrowbridgeReitz,
+    pub distrib: Microfacet,
 }
 
 /// Generalized half vector of a pair of directions, the relative IOR crossed
@@ -68,10 +68,12 @@ impl Dielectric {
     /// `alpha_x`, `alpha_y`: GGX roughness; below 1e-3 (or with `eta == 1`)
     /// the interface is smooth.
     pub fn new(eta: f32, alpha_x: f32, alpha_y: f32) -> Self {
-        Dielectric {
-            eta,
-            distrib: TrowbridgeReitz::new(alpha_x, alpha_y),
-        }
+        Self::with_microfacet(eta, Microfacet::trowbridge_reitz(alpha_x, alpha_y))
+    }
+
+    /// A dielectric with any microfacet distribution.
+    pub fn with_microfacet(eta: f32, distrib: Microfacet) -> Self {
+        Dielectric { eta, distrib }
     }
 
     pub fn is_delta(&self) -> bool {
@@ -208,7 +210,7 @@ impl Dielectric {
         mode: TransportMode,
         lobes: Lobes,
     ) -> Option<BsdfSample> {
-        let wm = self.distrib.sample_wm(wo, u);
+        let wm = self.distrib.sample_wm(wo, u)?;
         let r = fr_dielectric(wo.dot(wm), self.eta);
         let t = 1.0 - r;
         let (p_r, p_t) = lobes.choice(r);

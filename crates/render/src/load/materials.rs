@@ -3,6 +3,7 @@
 use super::spectrum::{spectrum_value, Value};
 use super::textures::TexBuilder;
 use super::Warnings;
+use crate::bsdf::microfacet::MicrofacetModel;
 use crate::material::*;
 use crate::texture::{TexFloat, TexRgb};
 use lumis_math::spectrum::{conductor_rgb, mean_under_white, named, reflectance_rgb};
@@ -60,7 +61,27 @@ pub(super) fn roughness(
         u,
         v,
         remap: p.get_bool("remaproughness", true)?,
+        model: MicrofacetModel::TrowbridgeReitz,
     })
+}
+
+/// [`roughness`] with lumis' `"string distribution"` extension
+/// (`trowbridgereitz`/`ggx`, the default, or `beckmann`), as Mitsuba and
+/// Tungsten scenes name their conductors' and dielectrics' distributions.
+fn roughness_with_distribution(tex: &TexBuilder, p: &ParamSet) -> Result<Roughness, Diagnostic> {
+    let mut r = roughness(tex, p, "", 0.0)?;
+    if let Some(name) = p.get_opt_string("distribution")? {
+        r.model = MicrofacetModel::from_name(&name).ok_or_else(|| {
+            Diagnostic::error(
+                &p.loc_of("distribution").unwrap(),
+                format!(
+                    "unknown microfacet distribution `{name}`: expected one of {}",
+                    MicrofacetModel::NAMES.join(", ")
+                ),
+            )
+        })?;
+    }
+    Ok(r)
 }
 
 /// A scalar index of refraction: a `float`, or a spectrum reduced to its
@@ -185,16 +206,16 @@ fn build_material(
         "conductor" => (
             MaterialKind::Conductor(ConductorMaterial {
                 spec: conductor_spec(tex, p, "")?,
-                roughness: roughness(tex, p, "", 0.0)?,
+                roughness: roughness_with_distribution(tex, p)?,
             }),
-            [&["eta", "k", "reflectance"][..], &rough].concat(),
+            [&["eta", "k", "reflectance", "distribution"][..], &rough].concat(),
         ),
         "dielectric" => (
             MaterialKind::Dielectric(DielectricMaterial {
                 eta: eta_param(desc, p, "eta", 1.5, w)?,
-                roughness: roughness(tex, p, "", 0.0)?,
+                roughness: roughness_with_distribution(tex, p)?,
             }),
-            [&["eta"][..], &rough].concat(),
+            [&["eta", "distribution"][..], &rough].concat(),
         ),
         "phong" => {
             let n = p.get_float("exponent", 10.0)?;

@@ -30,9 +30,8 @@ impl Coat {
     }
 
     pub fn bsdf(&self, t: &Textures, c: &TexCtx, base: Base) -> Bsdf {
-        let (ax, ay) = self.roughness.alphas(t, c);
         Bsdf::Layered(Layered::new(
-            Dielectric::new(self.eta(), ax, ay),
+            Dielectric::with_microfacet(self.eta(), self.roughness.microfacet(t, c)),
             base,
             self.thickness.eval(t, c),
             super::clamp01(self.albedo.eval(t, c)),

@@ -15,8 +15,7 @@ pub struct CoatedConductorMaterial {
 
 impl CoatedConductorMaterial {
     pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
-        let (ax, ay) = self.roughness.alphas(t, c);
-        let mut base = self.spec.bsdf(t, c, ax, ay);
+        let mut base = self.spec.bsdf(t, c, self.roughness.microfacet(t, c));
         let eta = self.coat.eta();
         base.eta /= eta;
         base.k /= eta;

@@ -1,4 +1,5 @@
 use super::Roughness;
+use crate::bsdf::microfacet::Microfacet;
 use crate::bsdf::{Bsdf, Conductor};
 use crate::texture::{TexCtx, TexRgb, Textures};
 
@@ -11,11 +12,13 @@ pub enum ConductorSpec {
 }
 
 impl ConductorSpec {
-    pub fn bsdf(&self, t: &Textures, c: &TexCtx, ax: f32, ay: f32) -> Conductor {
+    pub fn bsdf(&self, t: &Textures, c: &TexCtx, m: Microfacet) -> Conductor {
         match self {
-            ConductorSpec::EtaK { eta, k } => Conductor::new(eta.eval(t, c), k.eval(t, c), ax, ay),
+            ConductorSpec::EtaK { eta, k } => {
+                Conductor::with_microfacet(eta.eval(t, c), k.eval(t, c), m)
+            }
             ConductorSpec::Reflectance(r) => {
-                Conductor::from_reflectance(super::clamp01(r.eval(t, c)), ax, ay)
+                Conductor::from_reflectance_with(super::clamp01(r.eval(t, c)), m)
             }
         }
     }
@@ -29,7 +32,6 @@ pub struct ConductorMaterial {
 
 impl ConductorMaterial {
     pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
-        let (ax, ay) = self.roughness.alphas(t, c);
-        Bsdf::Conductor(self.spec.bsdf(t, c, ax, ay))
+        Bsdf::Conductor(self.spec.bsdf(t, c, self.roughness.microfacet(t, c)))
     }
 }

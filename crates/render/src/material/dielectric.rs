@@ -10,7 +10,9 @@ pub struct DielectricMaterial {
 
 impl DielectricMaterial {
     pub fn bsdf(&self, t: &Textures, c: &TexCtx) -> Bsdf {
-        let (ax, ay) = self.roughness.alphas(t, c);
-        Bsdf::Dielectric(Dielectric::new(self.eta, ax, ay))
+        Bsdf::Dielectric(Dielectric::with_microfacet(
+            self.eta,
+            self.roughness.microfacet(t, c),
+        ))
     }
 }

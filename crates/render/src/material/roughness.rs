@@ -1,3 +1,4 @@
+use crate::bsdf::microfacet::{Microfacet, MicrofacetModel};
 use crate::texture::{TexCtx, TexFloat, Textures};
 
 /// pbrt-v4's `uroughness` / `vroughness` (or `roughness`) and `remaproughness`:
@@ -8,6 +9,9 @@ pub struct Roughness {
     pub v: TexFloat,
     /// Map roughness to alpha by `sqrt` (pbrt-v4's `RoughnessToAlpha`).
     pub remap: bool,
+    /// The normal distribution (lumis' `"string distribution"` extension;
+    /// pbrt-v4 has only Trowbridge-Reitz).
+    pub model: MicrofacetModel,
 }
 
 impl Roughness {
@@ -15,6 +19,7 @@ impl Roughness {
         u: TexFloat::Const(0.0),
         v: TexFloat::Const(0.0),
         remap: false,
+        model: MicrofacetModel::TrowbridgeReitz,
     };
 
     fn alpha(&self, r: f32) -> f32 {
@@ -27,6 +32,12 @@ impl Roughness {
 
     pub fn alphas(&self, t: &Textures, c: &TexCtx) -> (f32, f32) {
         (self.alpha(self.u.eval(t, c)), self.alpha(self.v.eval(t, c)))
+    }
+
+    /// The microfacet distribution at a shading point.
+    pub fn microfacet(&self, t: &Textures, c: &TexCtx) -> Microfacet {
+        let (ax, ay) = self.alphas(t, c);
+        Microfacet::new(self.model, ax, ay)
     }
 
     /// The larger alpha when both are constants.

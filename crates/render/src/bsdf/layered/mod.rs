@@ -113,7 +113,7 @@ impl Layered {
     /// A sharp non-delta lobe: a rough coat or rough metal base below
     /// [`GLOSSY_ALPHA`].
     pub fn is_glossy(&self) -> bool {
-        let sharp = |d: &super::microfacet::TrowbridgeReitz| {
+        let sharp = |d: &super::microfacet::Microfacet| {
             !d.effectively_smooth() && d.alpha_x.max(d.alpha_y) < GLOSSY_ALPHA
         };
         (!self.top.is_delta() && sharp(&self.top.distrib))
