@@ -11,40 +11,108 @@ const BLOCK: u32 = 8;
 
 #[test]
 fn cornell_box_matches_tungsten() {
+    let Some(scene) = shared_scene("bitterli-cornell-box/scene-v4.pbrt") else {
+        return;
+    };
     matches_tungsten(
-        "bitterli-cornell-box/scene-v4.pbrt",
+        &scene,
+        BuildOverrides::default(),
         "bitterli-cornell-box/tungsten/TungstenRender.exr",
         (64, 64),
         256,
     );
 }
 
-/// Open (issue 3): at 80x45 and 256 spp lumis is 62% brighter than Tungsten
-/// in the red channel (1.092 vs 0.673); not yet explained (the scene is only
-/// diffuse, rough conductors and spherical area lights).
+/// Veach's MIS scene, as Tungsten rendered it. Bitterli's pbrt-v4 file
+/// departs from the Tungsten scene behind the reference in three ways, each
+/// visible in Bitterli's Mitsuba export of the same scene (plates
+/// `roughconductor` with `distribution beckmann` and `specularReflectance
+/// 0.3`) and each measured here (1280x720, lumis against the reference):
+/// - the plates' distribution: pbrt-v4 has only Trowbridge-Reitz, whose
+///   power-law tails light the gaps between the Glossy plate's highlights
+///   (0.12-0.27 there against Tungsten's 2e-6);
+/// - the plates' 0.3 reflectance factor, which pbrt-v4's conductor lacks:
+///   every plate pixel was 3.33 times Tungsten's;
+/// - the depth: the reference is direct light only (Veach's figure), not the
+///   file's `maxdepth 3`: at `maxdepth` 1 the walls agree within 0.1%, at 2
+///   and 3 their corners are 7-10% brighter than Tungsten's.
+///
+/// Together they made lumis 62% brighter in red. The test restores the
+/// three (Beckmann through lumis' `"string distribution"` extension, the 0.3
+/// as pbrt-v4's `mix` of each plate with black at `amount` 0.3, `maxdepth`
+/// 1 as an override); everything else is the shared file.
+///
+/// Bound: the issue's 2% on channel means. Measured at 80x45: -0.1% to -0.3%
+/// at 4096 spp over three seeds; 2048 spp (used here) spreads -0.3% to +0.7%
+/// over four seeds and 256 spp -2.6% to +1.5%: a quarter of the image's
+/// mean is the 0.05-radius light seen directly (L = 3040 on ~50 of 1280x720
+/// pixels), whose coverage noise needs the samples.
 #[test]
-#[ignore = "open: lumis is 62% brighter than Tungsten's veach-mis render"]
 fn veach_mis_matches_tungsten() {
+    let Some(scene) = shared_scene("bitterli-veach-mis/scene-v4.pbrt") else {
+        return;
+    };
+    let mut text = std::fs::read_to_string(&scene).unwrap();
+    let plates = ["Smooth", "Glossy", "Rough", "SuperRough"];
+    for n in plates {
+        let def = format!("MakeNamedMaterial \"{n}\"\n    \"string type\" [ \"conductor\" ]");
+        assert_eq!(text.matches(&def).count(), 1, "plate material {n}");
+        text = text.replace(
+            &def,
+            &format!(
+                "MakeNamedMaterial \"{n}-metal\"\n    \"string type\" [ \"conductor\" ]\n    \
+                 \"string distribution\" [ \"beckmann\" ]"
+            ),
+        );
+    }
+    // The mixes go after the last plate metal, before the first plate.
+    let first_use = text.find("NamedMaterial \"Smooth\"\nShape").unwrap();
+    let mut mixes = String::from(
+        "MakeNamedMaterial \"lumis-black\" \"string type\" [ \"diffuse\" ] \"rgb reflectance\" [ 0 0 0 ]\n",
+    );
+    for n in plates {
+        mixes += &format!(
+            "MakeNamedMaterial \"{n}\" \"string type\" [ \"mix\" ] \
+             \"string materials\" [ \"lumis-black\" \"{n}-metal\" ] \"float amount\" [ 0.3 ]\n"
+        );
+    }
+    text.insert_str(first_use, &mixes);
+    let dir = std::env::temp_dir().join(format!("lumis-veach-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene-v4-as-tungsten.pbrt");
+    std::fs::write(&path, text).unwrap();
+    let ov = BuildOverrides {
+        max_depth: Some(1),
+        ..Default::default()
+    };
     matches_tungsten(
-        "bitterli-veach-mis/scene-v4.pbrt",
+        &path,
+        ov,
         "bitterli-veach-mis/TungstenRender.exr",
         (80, 45),
-        256,
+        2048,
     );
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Renders `scene` at `res` and compares it with Tungsten's render
 /// box-downsampled to `res`: channel means within 2% and 8x8-block errors.
-fn matches_tungsten(scene: &str, reference: &str, res: (u32, u32), spp: u32) {
-    let (Some(scene), Some(reference)) = (shared_scene(scene), shared_scene(reference)) else {
+fn matches_tungsten(
+    scene: &std::path::Path,
+    ov: BuildOverrides,
+    reference: &str,
+    res: (u32, u32),
+    spp: u32,
+) {
+    let Some(reference) = shared_scene(reference) else {
         return;
     };
     let (rx, ry) = res;
     let ov = BuildOverrides {
         resolution: Some(res),
-        ..Default::default()
+        ..ov
     };
-    let l = load_path(&scene, &ov).unwrap_or_else(|e| panic!("{e}"));
+    let l = load_path(scene, &ov).unwrap_or_else(|e| panic!("{e}"));
     assert!(
         l.warnings
             .iter()
@@ -76,9 +144,19 @@ fn matches_tungsten(scene: &str, reference: &str, res: (u32, u32), spp: u32) {
         let ours: f64 = out.film.pixels.iter().map(|p| p.mean[c]).sum::<f64>() / n as f64;
         let theirs: f64 = refd.iter().map(|p| p[c]).sum::<f64>() / n as f64;
         let rel = ours / theirs - 1.0;
+        // Our Monte Carlo standard error of the image mean.
+        let se = out
+            .film
+            .pixels
+            .iter()
+            .map(|p| p.variance_of_mean()[c] as f64)
+            .sum::<f64>()
+            .sqrt()
+            / n as f64;
         eprintln!(
-            "channel {c}: lumis {ours:.5} tungsten {theirs:.5} ({:+.2}%)",
-            rel * 100.0
+            "channel {c}: lumis {ours:.5} tungsten {theirs:.5} ({:+.2}%, independent-sample standard error {:.2}%, an overestimate for sobol)",
+            rel * 100.0,
+            se / theirs * 100.0
         );
         assert!(
             rel.abs() < 0.02,
