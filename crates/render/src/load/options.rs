@@ -196,10 +196,26 @@ pub fn build_options(
         integrator.max_depth = e.params.get_int("maxdepth", 5)?.max(0) as u32;
         match IntegratorKind::from_name(&e.ty) {
             Some(k) => integrator.kind = k,
+            None if e.ty == "sppm" => {
+                // The scenes written for SPPM are caustic scenes: render them
+                // with the photon method rather than a path tracer that
+                // cannot see caustics of delta lights.
+                w.push(Diagnostic::warning(
+                    &e.loc,
+                    "integrator `sppm` is not available; using `photon` (photon mapping \
+                     with final gathering) with its own defaults",
+                ));
+                integrator.kind = IntegratorKind::Photon;
+                for p in e.params.unused() {
+                    if p.name != "maxdepth" {
+                        p.mark_used();
+                    }
+                }
+            }
             None => {
                 let note = match e.ty.as_str() {
                     "volpath" => "volumes are not rendered yet",
-                    "bdpt" | "mlt" | "sppm" | "lightpath" => "it is not implemented",
+                    "bdpt" | "mlt" | "lightpath" => "it is not implemented",
                     _ => "it is not a lumis integrator",
                 };
                 w.push(Diagnostic::warning(
@@ -218,11 +234,11 @@ pub fn build_options(
         for ignored in ["lightsampler", "regularize"] {
             e.params.mark_used(ignored);
         }
-        if integrator.kind == IntegratorKind::Photon {
+        if e.ty == "photon" {
             integrator.photon =
                 super::photon::photon_settings(Some(e), &ov.photon, integrator.max_depth)?;
         }
-        let known: &[&str] = if integrator.kind == IntegratorKind::Photon {
+        let known: &[&str] = if e.ty == "photon" {
             super::photon::PARAMS
         } else {
             &["maxdepth"]
