@@ -1,23 +1,16 @@
 //! Loading pbrt-v4's `coateddiffuse` and `coatedconductor`: parameter names,
 //! defaults, the coat-relative conductor constants and located errors.
 
+mod support;
+
 use lumis_math::{Rgb, Vec2, Vec3};
 use lumis_render::bsdf::layered::Base;
 use lumis_render::bsdf::Bsdf;
-use lumis_render::load::{load_text, BuildOverrides, LoadedScene};
+use lumis_render::load::LoadedScene;
 use lumis_render::material::MaterialKind;
 use lumis_render::texture::TexCtx;
-use std::path::Path;
 
-fn load(material: &str) -> Result<LoadedScene, String> {
-    let text = format!(
-        "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
-         Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n\
-         {material}\nShape \"sphere\"\n"
-    );
-    load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
-        .map_err(|e| e.to_string())
-}
+use support::load_material as load;
 
 /// The layered BSDF of the scene's first material.
 fn layered(l: &LoadedScene) -> lumis_render::bsdf::Layered {

@@ -2,22 +2,15 @@
 //! and lumis' `"string distribution"` extension (Trowbridge-Reitz or
 //! Beckmann), with located errors.
 
+mod support;
+
 use lumis_math::{Vec2, Vec3};
 use lumis_render::bsdf::microfacet::{Microfacet, MicrofacetModel};
 use lumis_render::bsdf::Bsdf;
-use lumis_render::load::{load_text, BuildOverrides, LoadedScene};
+use lumis_render::load::LoadedScene;
 use lumis_render::texture::TexCtx;
-use std::path::Path;
 
-fn load(material: &str) -> Result<LoadedScene, String> {
-    let text = format!(
-        "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
-         Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n\
-         {material}\nShape \"sphere\"\n"
-    );
-    load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
-        .map_err(|e| e.to_string())
-}
+use support::load_material as load;
 
 /// The microfacet distribution of the scene's first material.
 fn microfacet(l: &LoadedScene) -> Microfacet {

@@ -15,6 +15,18 @@ pub fn load(text: &str, ov: &BuildOverrides) -> LoadedScene {
         .unwrap_or_else(|e| panic!("scene failed to load:\n{e}"))
 }
 
+/// A point light over a sphere of `material` (scene lines 5 and on), as
+/// `s.pbrt`: errors come back as text, for checking their locations.
+pub fn load_material(material: &str) -> Result<LoadedScene, String> {
+    let text = format!(
+        "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
+         Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n\
+         {material}\nShape \"sphere\"\n"
+    );
+    load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
+        .map_err(|e| e.to_string())
+}
+
 pub fn settings(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderSettings {
     RenderSettings::from_options(&l.options, spp, seed, threads)
 }
