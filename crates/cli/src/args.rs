@@ -115,8 +115,10 @@ pub struct RenderArgs {
     /// photon: MIS heuristic for the caustic weights.
     #[arg(long, value_name = "balance|power")]
     pub heuristic: Option<String>,
-    /// photon: alpha in q_1 at the first camera hit: `auto` (samples per pixel) or `1`.
-    #[arg(long, value_name = "auto|1")]
+    /// photon: alpha in q_1 at the first camera hit: `footprint` (the default, also `auto`:
+    /// samples per pixel discounted by the photon neighbourhoods a pixel reads), `spp`
+    /// (the seed's: samples per pixel) or `1`.
+    #[arg(long, value_name = "footprint|spp|1")]
     pub alpha: Option<String>,
     /// photon: photons emitted for the global map.
     #[arg(long, value_name = "N")]

@@ -68,6 +68,20 @@ impl Filter {
             self.sample_1d(u.y) * self.radius.y,
         )
     }
+
+    /// The area (in pixels) a pixel's samples spread over: `12 sigma_x
+    /// sigma_y` of the sampled offsets, which is 1 for a one-pixel box.
+    pub fn sample_spread(&self) -> f32 {
+        let n = 1024;
+        let (mut m, mut m2) = (0.0f64, 0.0f64);
+        for i in 0..n {
+            let x = self.sample_1d((i as f32 + 0.5) / n as f32) as f64;
+            m += x;
+            m2 += x * x;
+        }
+        let var = (m2 / n as f64 - (m / n as f64).powi(2)).max(0.0);
+        (12.0 * var * (self.radius.x * self.radius.y) as f64) as f32
+    }
 }
 
 #[cfg(test)]
@@ -84,5 +98,13 @@ mod tests {
         assert!((t.sample_1d(0.25) - (-1.0 + 0.5f32.sqrt())).abs() < 1e-3);
         let g = Filter::gaussian(Vec2::splat(1.5), 0.5);
         assert!(g.sample(Vec2::splat(0.999)).x <= 1.5);
+    }
+
+    #[test]
+    fn sample_spread_is_twelve_variances() {
+        // Box: uniform over one pixel; tent of radius 1: variance 1/6 per axis.
+        assert!((Filter::boxf(Vec2::splat(0.5)).sample_spread() - 1.0).abs() < 1e-3);
+        assert!((Filter::boxf(Vec2::new(1.0, 0.5)).sample_spread() - 2.0).abs() < 2e-3);
+        assert!((Filter::triangle(Vec2::splat(1.0)).sample_spread() - 2.0).abs() < 1e-2);
     }
 }

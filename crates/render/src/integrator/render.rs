@@ -220,6 +220,7 @@ fn render_in_pool(
     // rebuilds the same maps from the seed: photon tracing is deterministic).
     let maps = (integrator.kind == IntegratorKind::Photon)
         .then(|| PhotonMaps::build(scene, &integrator.photon, settings.seed));
+    let pixel_spread = settings.filter.sample_spread();
     let mut pass_time_sum = Duration::ZERO;
     let mut samples_here = 0u32;
     let mut rays_here = RayCounts::default();
@@ -229,6 +230,7 @@ fn render_in_pool(
             maps: m,
             s: &integrator.photon,
             alpha_first: state.alpha,
+            pixel_spread,
         });
         if hooks.cancel.load(Ordering::Relaxed) {
             interrupted = true;

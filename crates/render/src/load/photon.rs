@@ -1,6 +1,8 @@
 //! Parameters of the `photon` integrator: scene file first, command line wins.
 
-use crate::integrator::photon::{check_memory, CausticMode, Heuristic, Kernel, PhotonSettings};
+use crate::integrator::photon::{
+    check_memory, AlphaMode, CausticMode, Heuristic, Kernel, PhotonSettings,
+};
 use lumis_scene::{Diagnostic, Entity, Loc};
 
 /// Command-line values for the photon integrator (all optional).
@@ -52,14 +54,6 @@ fn choice<T>(
     })
 }
 
-fn alpha_auto(s: &str) -> Option<bool> {
-    match s {
-        "auto" => Some(true),
-        "1" => Some(false),
-        _ => None,
-    }
-}
-
 fn kernel(s: &str) -> Option<Kernel> {
     match s {
         "none" => Some(Kernel::None),
@@ -109,11 +103,11 @@ pub fn photon_settings(
             "balance, power",
             p.loc_of("heuristic").as_ref(),
         )?;
-        s.alpha_auto = choice(
-            &string("alpha", "auto")?,
+        s.alpha = choice(
+            &string("alpha", s.alpha.name())?,
             "alpha",
-            alpha_auto,
-            "auto, 1",
+            AlphaMode::from_name,
+            AlphaMode::NAMES,
             p.loc_of("alpha").as_ref(),
         )?;
         s.kernel = choice(
@@ -139,7 +133,7 @@ pub fn photon_settings(
         s.heuristic = choice(v, "heuristic", Heuristic::from_name, "balance, power", None)?;
     }
     if let Some(v) = &ov.alpha {
-        s.alpha_auto = choice(v, "alpha", alpha_auto, "auto, 1", None)?;
+        s.alpha = choice(v, "alpha", AlphaMode::from_name, AlphaMode::NAMES, None)?;
     }
     if let Some(v) = &ov.kernel {
         s.kernel = choice(v, "kernel", kernel, "none, cone", None)?;

@@ -96,6 +96,17 @@ impl Footprint {
         )
     }
 
+    /// Area of one pixel's footprint on the tangent plane at `p` (normal
+    /// `n`): the camera's differentials without the sample-count scale. 0
+    /// without a camera.
+    pub fn pixel_area(&self, p: Vec3, n: Vec3) -> f32 {
+        if self.spp_scale == 0.0 {
+            return 0.0;
+        }
+        let (dx, dy) = self.dp_dxy(p, n);
+        dx.cross(dy).length() / (self.spp_scale * self.spp_scale)
+    }
+
     /// The texture context at a hit: footprint and uv derivatives by least
     /// squares from dp/du and dp/dv (pbrt-v4's `ComputeDifferentials`).
     pub fn context(&self, g: &SurfaceGeom) -> TexCtx {

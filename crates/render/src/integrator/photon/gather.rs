@@ -6,7 +6,7 @@
 //! their first non-delta hit; along glossy surfaces the same rules recurse).
 
 use super::aim::emitted_flux;
-use super::weights::{q1, q2, w1, w2};
+use super::weights::{q1, q2, w1, w2, Alpha, AlphaMode};
 use super::{Kernel, PhotonMaps, PhotonSettings};
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
@@ -21,8 +21,11 @@ pub struct PhotonCtx<'a> {
     pub scene: &'a Scene,
     pub maps: &'a PhotonMaps,
     pub s: &'a PhotonSettings,
-    /// `alpha` at the first non-delta camera hit: samples per pixel (or 1).
+    /// Samples per pixel (known, or predicted under a time budget): the
+    /// seed's `alpha` at the first non-delta camera hit.
     pub alpha_first: f32,
+    /// The area, in pixels, a pixel's samples spread over (the filter's).
+    pub pixel_spread: f32,
 }
 
 thread_local! {
@@ -65,7 +68,10 @@ pub fn li(
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
-        let alpha = alpha_at(ctx.s, ctx.alpha_first, first);
+        let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || {
+            let f = &scene.textures.footprint;
+            f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
+        });
         let m2 = ctx.s.gather_rays;
         l += beta * shade(ctx, &hit, &bsdf, wo, alpha, m2, depth, sampler, rays);
         // `shade` covers the non-delta part; a BSDF with a delta lobe (a
@@ -104,13 +110,28 @@ fn delta_lobe_sample(
     Some((weight, spawn_ray(hit.geom.p, hit.geom.ng, bs.wi)))
 }
 
-/// `alpha` of `q_1` at a shading point (seed, A.10): the samples per pixel at
-/// the camera path's first non-delta hit (with `alpha = auto`), 1 elsewhere.
-pub fn alpha_at(s: &PhotonSettings, alpha_first: f32, first_camera_hit: bool) -> f32 {
-    if first_camera_hit && s.alpha_auto {
-        alpha_first
-    } else {
-        1.0
+/// `alpha` of `q_1` at a shading point (seed, A.10): from the samples per
+/// pixel at the camera path's first non-delta hit (and, in `footprint` mode,
+/// the area there that the pixel's samples spread over), 1 elsewhere.
+pub fn alpha_at(
+    mode: AlphaMode,
+    alpha_first: f32,
+    first_camera_hit: bool,
+    pixel_area: impl FnOnce() -> f32,
+) -> Alpha {
+    if !first_camera_hit {
+        return Alpha::ONE;
+    }
+    match mode {
+        AlphaMode::One => Alpha::ONE,
+        AlphaMode::Spp => Alpha {
+            spp: alpha_first,
+            pixel_area: 0.0,
+        },
+        AlphaMode::Footprint => Alpha {
+            spp: alpha_first,
+            pixel_area: pixel_area(),
+        },
     }
 }
 
@@ -121,7 +142,7 @@ pub fn shade(
     x: &Hit,
     bsdf: &SurfaceBsdf,
     wo: Vec3,
-    alpha: f32,
+    alpha: Alpha,
     m2: u32,
     depth: u32,
     sampler: &mut Sampler,
@@ -129,7 +150,7 @@ pub fn shade(
 ) -> Rgb {
     let scene = ctx.scene;
     let mut l = sample_direct_n(scene, x, bsdf, wo, m2 as f32, sampler, rays);
-    let (lc, delta_a) = caustic_photons(ctx, x, bsdf, wo, alpha, m2);
+    let (lc, delta_a, alpha) = caustic_photons(ctx, x, bsdf, wo, alpha, m2);
     l += lc;
     if m2 == 0 {
         return l;
@@ -263,8 +284,7 @@ fn trace_gather(
             continue;
         }
         let here = if bsdf.is_glossy() && d < s.max_depth {
-            let alpha = alpha_at(s, ctx.alpha_first, false);
-            emitted + shade(ctx, &h, &bsdf, wo, alpha, 1, d, sampler, rays)
+            emitted + shade(ctx, &h, &bsdf, wo, Alpha::ONE, 1, d, sampler, rays)
         } else {
             emitted + global_radiance(ctx, &h, &bsdf, wo)
         };
@@ -302,15 +322,16 @@ fn caustic_gather_weight(ctx: &PhotonCtx, g: &Gather, le: f32, flux: impl Fn() -
 }
 
 /// The caustic photon estimate at `x`, each photon weighted by `w_1`; also
-/// returns the disc area `DeltaA` of the query, which the gather rays share.
+/// returns the disc area `DeltaA` of the query and the `alpha` it gives,
+/// which the gather rays share.
 fn caustic_photons(
     ctx: &PhotonCtx,
     x: &Hit,
     bsdf: &SurfaceBsdf,
     wo: Vec3,
-    alpha: f32,
+    alpha: Alpha,
     m2: u32,
-) -> (Rgb, f32) {
+) -> (Rgb, f32, f32) {
     let map = &ctx.maps.caustic;
     let s = ctx.s;
     SCRATCH.with(|cell| {
@@ -318,8 +339,9 @@ fn caustic_photons(
         found.clear();
         let r2 = map.knn(x.geom.p, s.nearest, ctx.maps.max_radius, &mut found);
         let delta_a = PI * r2;
+        let alpha = alpha.effective(delta_a);
         if found.is_empty() || r2 <= 0.0 {
-            return (Rgb::BLACK, delta_a);
+            return (Rgb::BLACK, delta_a, alpha);
         }
         let n = map.emitted() as f64;
         let r = r2.sqrt();
@@ -359,7 +381,7 @@ fn caustic_photons(
             };
             sum += f * ph.power() * (w * kw);
         }
-        (sum / delta_a, delta_a)
+        (sum / delta_a, delta_a, alpha)
     })
 }
 
@@ -413,16 +435,17 @@ mod tests {
 
     #[test]
     fn alpha_applies_only_at_the_first_camera_hit() {
-        let auto = PhotonSettings::default();
-        assert!(auto.alpha_auto);
-        assert_eq!(alpha_at(&auto, 64.0, true), 64.0);
-        assert_eq!(alpha_at(&auto, 64.0, false), 1.0);
-        let one = PhotonSettings {
-            alpha_auto: false,
-            ..PhotonSettings::default()
-        };
-        assert_eq!(alpha_at(&one, 64.0, true), 1.0);
-        assert_eq!(alpha_at(&one, 64.0, false), 1.0);
+        assert_eq!(PhotonSettings::default().alpha, AlphaMode::Footprint);
+        let area = || 2e-3;
+        let at = |m, first| alpha_at(m, 64.0, first, area).effective(1e-3);
+        // The seed's: spp at the first hit, whatever the footprint.
+        assert_eq!(at(AlphaMode::Spp, true), 64.0);
+        // Footprint twice the disc: rho = 1/3.
+        assert!((at(AlphaMode::Footprint, true) - 22.0).abs() < 1e-4);
+        for m in [AlphaMode::Spp, AlphaMode::Footprint, AlphaMode::One] {
+            assert_eq!(at(m, false), 1.0);
+        }
+        assert_eq!(at(AlphaMode::One, true), 1.0);
     }
 
     #[test]

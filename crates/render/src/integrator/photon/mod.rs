@@ -18,7 +18,7 @@ use crate::scene::Scene;
 use map::PhotonMap;
 use radiance::RadiancePhotons;
 use std::time::{Duration, Instant};
-pub use weights::{CausticMode, Heuristic};
+pub use weights::{AlphaMode, CausticMode, Heuristic};
 
 /// Density-estimation filter for the caustic photons.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,8 +43,8 @@ pub struct PhotonSettings {
     pub max_radius: f32,
     pub caustics: CausticMode,
     pub heuristic: Heuristic,
-    /// `alpha` in q_1 at the first non-delta camera hit: samples per pixel (true) or 1 (false).
-    pub alpha_auto: bool,
+    /// `alpha` in q_1 at the first non-delta camera hit.
+    pub alpha: AlphaMode,
     pub max_depth: u32,
     pub kernel: Kernel,
     /// Read the global map through Christensen's precomputed radiance photons
@@ -65,7 +65,7 @@ impl Default for PhotonSettings {
             max_radius: 0.0,
             caustics: CausticMode::Mis,
             heuristic: Heuristic::Balance,
-            alpha_auto: true,
+            alpha: AlphaMode::Footprint,
             max_depth: 8,
             kernel: Kernel::None,
             radiance_photons: true,

@@ -56,6 +56,74 @@ impl Heuristic {
     }
 }
 
+/// How `alpha` of `q_1` is set at the camera path's first non-delta hit
+/// (elsewhere it is 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AlphaMode {
+    /// The seed's: the samples per pixel. It assumes every sample of a pixel
+    /// reads the same photons, so the photon estimate counts once per pixel
+    /// while the gather rays count `spp` times.
+    Spp,
+    /// The samples per pixel discounted by how many different photon
+    /// neighbourhoods the pixel's samples read (see [`Alpha::effective`]):
+    /// the seed's value where a pixel's footprint is small against the query
+    /// disc, tending to 1 where it is large.
+    Footprint,
+    /// 1.
+    One,
+}
+
+impl AlphaMode {
+    pub fn from_name(s: &str) -> Option<AlphaMode> {
+        match s {
+            "footprint" | "auto" => Some(AlphaMode::Footprint),
+            "spp" => Some(AlphaMode::Spp),
+            "1" => Some(AlphaMode::One),
+            _ => None,
+        }
+    }
+    pub fn name(&self) -> &'static str {
+        match self {
+            AlphaMode::Spp => "spp",
+            AlphaMode::Footprint => "footprint",
+            AlphaMode::One => "1",
+        }
+    }
+    pub const NAMES: &'static str = "footprint (or auto), spp, 1";
+}
+
+/// `alpha` at a shading point: the pixel's sample count and the area its
+/// samples spread over there (0: unknown, the seed's `alpha = spp`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Alpha {
+    pub spp: f32,
+    pub pixel_area: f32,
+}
+
+impl Alpha {
+    pub const ONE: Alpha = Alpha {
+        spp: 1.0,
+        pixel_area: 0.0,
+    };
+
+    /// `alpha` for a caustic query of disc area `delta_a`. The pixel value
+    /// averages `spp` photon estimates; two of them share photons as their
+    /// query discs overlap, on average `rho = DeltaA / (DeltaA + A_pix)` for
+    /// points spread over the pixel's footprint `A_pix` (1 for a footprint
+    /// inside one disc, `DeltaA / A_pix` for a large one). The average then
+    /// has the variance of `spp / (1 + (spp - 1) rho)` independent estimates,
+    /// so the gather rays' `spp` samples stand against that many photon
+    /// estimates: `alpha = 1 + (spp - 1) rho`.
+    pub fn effective(&self, delta_a: f32) -> f32 {
+        let rho = if self.pixel_area > 0.0 && self.pixel_area.is_finite() && delta_a > 0.0 {
+            delta_a / (delta_a + self.pixel_area)
+        } else {
+            1.0
+        };
+        1.0 + (self.spp - 1.0).max(0.0) * rho
+    }
+}
+
 /// `q_1 = N L_e cos(theta) DeltaA / (Phi alpha)` (A.10). `L_e = infinity`
 /// (delta lights) gives infinity.
 #[inline]
@@ -105,6 +173,27 @@ pub fn w2(q1: f32, q2: f32, mode: CausticMode, h: Heuristic) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn effective_alpha_spans_one_to_spp() {
+        let a = |spp: f32, area: f32| Alpha {
+            spp,
+            pixel_area: area,
+        };
+        // Unknown footprint: the seed's alpha.
+        assert_eq!(a(64.0, 0.0).effective(1e-3), 64.0);
+        // A footprint far inside the disc: every sample reads the same photons.
+        assert!((a(64.0, 1e-9).effective(1e-3) - 64.0).abs() < 1e-3);
+        // Equal areas: rho = 1/2.
+        assert!((a(65.0, 1e-3).effective(1e-3) - 33.0).abs() < 1e-4);
+        // A footprint of 1000 discs: close to 1 + 63/1001.
+        assert!((a(64.0, 1.0).effective(1e-3) - (1.0 + 63.0 / 1001.0)).abs() < 1e-4);
+        assert_eq!(Alpha::ONE.effective(1e-3), 1.0);
+        assert_eq!(AlphaMode::from_name("auto"), Some(AlphaMode::Footprint));
+        for m in [AlphaMode::Spp, AlphaMode::Footprint, AlphaMode::One] {
+            assert_eq!(AlphaMode::from_name(m.name()), Some(m));
+        }
+    }
 
     #[test]
     fn q1_and_q2_match_hand_computed_values() {
