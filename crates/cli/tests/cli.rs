@@ -166,6 +166,38 @@ fn interrupt_writes_the_image_so_far_with_its_sample_count() {
     assert!(img.data.iter().all(|v| v.is_finite()));
 }
 
+/// An interrupt during a long photon pass ends the render promptly (the
+/// pass gives up between chunks of photons) with a 0-spp image, instead of
+/// tracing the whole budget first.
+#[test]
+fn interrupt_during_the_photon_pass_stops_it() {
+    let d = temp_dir("cli", "sigint-photons");
+    let start = std::time::Instant::now();
+    // 200M caustic photons: 40 s or more of tracing.
+    let out = lumis_interrupted(
+        &d,
+        &[
+            "render",
+            "--resolution",
+            "16x16",
+            "--spp",
+            "4",
+            "--caustic-photons",
+            "200000000",
+            "-o",
+            "int.exr",
+            "-q",
+        ],
+        Duration::from_millis(1500),
+    );
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{e}");
+    let took = start.elapsed();
+    assert!(took < Duration::from_secs(15), "took {took:?}");
+    let img = lumis_render::image_io::read_image(&d.join("int.exr")).unwrap();
+    assert_eq!(img.meta("lumis:spp"), Some("0"));
+}
+
 #[test]
 fn compare_prints_metrics_and_refuses_mismatched_sizes() {
     use lumis_render::image_io::{write_image, RgbImage};

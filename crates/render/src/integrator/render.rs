@@ -218,8 +218,13 @@ fn render_in_pool(
     };
     // The photon pass runs once, inside the time budget (a resumed render
     // rebuilds the same maps from the seed: photon tracing is deterministic).
+    // An interrupt during it leaves no maps; the loop below then stops
+    // before its first pass.
     let maps = (integrator.kind == IntegratorKind::Photon)
-        .then(|| PhotonMaps::build(scene, &integrator.photon, settings.seed));
+        .then(|| {
+            PhotonMaps::build_cancellable(scene, &integrator.photon, settings.seed, hooks.cancel)
+        })
+        .flatten();
     let pixel_spread = settings.filter.sample_spread();
     let mut pass_time_sum = Duration::ZERO;
     let mut samples_here = 0u32;

@@ -17,6 +17,7 @@ pub mod weights;
 use crate::scene::Scene;
 use map::PhotonMap;
 use radiance::RadiancePhotons;
+use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 pub use weights::{AlphaMode, CausticMode, Heuristic};
 
@@ -141,6 +142,17 @@ pub struct PhotonMaps {
 
 impl PhotonMaps {
     pub fn build(scene: &Scene, s: &PhotonSettings, seed: u64) -> PhotonMaps {
+        Self::build_cancellable(scene, s, seed, &AtomicBool::new(false)).expect("not cancelled")
+    }
+
+    /// [`Self::build`] that gives up (`None`) soon after `cancel` is set, so
+    /// an interrupt during a long photon pass ends the render at once.
+    pub fn build_cancellable(
+        scene: &Scene,
+        s: &PhotonSettings,
+        seed: u64,
+        cancel: &AtomicBool,
+    ) -> Option<PhotonMaps> {
         let phi: f32 = scene
             .lights
             .iter()
@@ -152,24 +164,26 @@ impl PhotonMaps {
             0.02 * scene.bounds.bounding_sphere().1.max(1e-6)
         };
         let t0 = Instant::now();
-        let g = trace::trace_photons(
+        let g = trace::trace_photons_cancellable(
             scene,
             s.global_photons,
             trace::MapKind::Global,
             seed,
             s.max_depth,
             None,
-        );
+            cancel,
+        )?;
         let targets =
             Some(aim::Targets::from_scene(scene)).filter(|t| s.aim_caustics && !t.is_empty());
-        let c = trace::trace_photons(
+        let c = trace::trace_photons_cancellable(
             scene,
             s.caustic_photons,
             trace::MapKind::Caustic,
             seed ^ 0x5eed,
             s.max_depth,
             targets.as_ref(),
-        );
+            cancel,
+        )?;
         let trace_time = t0.elapsed();
         let t1 = Instant::now();
         let global = PhotonMap::build(g.photons, s.global_photons);
@@ -199,7 +213,7 @@ impl PhotonMaps {
             radiance_time,
             memory_bytes,
         };
-        PhotonMaps {
+        Some(PhotonMaps {
             global,
             caustic,
             radiance,
@@ -207,6 +221,6 @@ impl PhotonMaps {
             max_radius,
             targets,
             stats,
-        }
+        })
     }
 }

@@ -9,6 +9,7 @@ use crate::geometry::ray::spawn_ray;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler, SamplerKind, Vec3};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MapKind {
@@ -35,11 +36,27 @@ pub fn trace_photons(
     max_depth: u32,
     targets: Option<&Targets>,
 ) -> Traced {
+    let never = AtomicBool::new(false);
+    trace_photons_cancellable(scene, n_emit, kind, seed, max_depth, targets, &never)
+        .expect("not cancelled")
+}
+
+/// [`trace_photons`] that gives up (`None`) soon after `cancel` is set:
+/// chunks not yet started are skipped.
+pub fn trace_photons_cancellable(
+    scene: &Scene,
+    n_emit: u64,
+    kind: MapKind,
+    seed: u64,
+    max_depth: u32,
+    targets: Option<&Targets>,
+    cancel: &AtomicBool,
+) -> Option<Traced> {
     if n_emit == 0 || scene.light_sampler.is_empty() {
-        return Traced {
+        return Some(Traced {
             photons: Vec::new(),
             normals: Vec::new(),
-        };
+        });
     }
     let chunks = n_emit.div_ceil(CHUNK);
     let parts: Vec<Traced> = (0..chunks)
@@ -49,6 +66,9 @@ pub fn trace_photons(
                 photons: Vec::new(),
                 normals: Vec::new(),
             };
+            if cancel.load(Ordering::Relaxed) {
+                return out;
+            }
             let mut sampler = Sampler::new(SamplerKind::Independent, seed);
             let mut rays = 0u64;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_emit) {
@@ -68,10 +88,13 @@ pub fn trace_photons(
             scene
                 .counters
                 .photon_rays
-                .fetch_add(rays, std::sync::atomic::Ordering::Relaxed);
+                .fetch_add(rays, Ordering::Relaxed);
             out
         })
         .collect();
+    if cancel.load(Ordering::Relaxed) {
+        return None;
+    }
     let total: usize = parts.iter().map(|p| p.photons.len()).sum();
     let mut all = Traced {
         photons: Vec::with_capacity(total),
@@ -81,7 +104,7 @@ pub fn trace_photons(
         all.photons.extend(p.photons);
         all.normals.extend(p.normals);
     }
-    all
+    Some(all)
 }
 
 #[allow(clippy::too_many_arguments)]
