@@ -59,71 +59,38 @@ pub fn fr_dielectric(cos_i: f32, eta: f32) -> f32 {
     (r_parl * r_parl + r_perp * r_perp) / 2.0
 }
 
-/// Minimal complex arithmetic for the conductor Fresnel term.
-#[derive(Clone, Copy, Debug)]
-struct Complex {
-    re: f32,
-    im: f32,
-}
-
-impl Complex {
-    const fn new(re: f32, im: f32) -> Self {
-        Complex { re, im }
-    }
-    fn real(re: f32) -> Self {
-        Complex { re, im: 0.0 }
-    }
-    fn add(self, o: Complex) -> Complex {
-        Complex::new(self.re + o.re, self.im + o.im)
-    }
-    fn sub(self, o: Complex) -> Complex {
-        Complex::new(self.re - o.re, self.im - o.im)
-    }
-    fn mul(self, o: Complex) -> Complex {
-        Complex::new(
-            self.re * o.re - self.im * o.im,
-            self.re * o.im + self.im * o.re,
-        )
-    }
-    fn div(self, o: Complex) -> Complex {
-        let d = o.re * o.re + o.im * o.im;
-        Complex::new(
-            (self.re * o.re + self.im * o.im) / d,
-            (self.im * o.re - self.re * o.im) / d,
-        )
-    }
-    /// Squared magnitude.
-    fn norm(self) -> f32 {
-        self.re * self.re + self.im * self.im
-    }
-    /// Principal square root (non-negative real part).
-    fn sqrt(self) -> Complex {
-        let n = self.norm().sqrt();
-        if n == 0.0 {
-            return Complex::real(0.0);
-        }
-        let t1 = (0.5 * (n + self.re.abs())).sqrt();
-        let t2 = 0.5 * self.im / t1;
-        if self.re >= 0.0 {
-            Complex::new(t1, t2)
-        } else {
-            Complex::new(t2.abs(), t1.copysign(self.im))
-        }
-    }
-}
-
 /// Fresnel reflectance of a conductor with complex IOR `eta + i k` for one
-/// wavelength; `cos_i` is clamped to [0, 1] (conductors are opaque).
+/// wavelength; `cos_i` is clamped to [0, 1] (conductors are opaque). The
+/// real-arithmetic form of the complex Fresnel equations (with
+/// `a^2 + b^2 = |eta^2 - k^2 - sin^2 + 2 i eta k|`, as in pbrt-v3's
+/// `FrConductor`): two square roots and two divisions; the test module keeps
+/// the complex-number form to check it against.
 pub fn fr_complex(cos_i: f32, eta: f32, k: f32) -> f32 {
-    let cos_i = cos_i.clamp(0.0, 1.0);
-    let eta = Complex::new(eta, k);
-    let ci = Complex::real(cos_i);
-    let sin2_i = Complex::real(1.0 - cos_i * cos_i);
-    let sin2_t = sin2_i.div(eta.mul(eta));
-    let cos_t = Complex::real(1.0).sub(sin2_t).sqrt();
-    let r_parl = eta.mul(ci).sub(cos_t).div(eta.mul(ci).add(cos_t));
-    let r_perp = ci.sub(eta.mul(cos_t)).div(ci.add(eta.mul(cos_t)));
-    (r_parl.norm() + r_perp.norm()) / 2.0
+    let c = cos_i.clamp(0.0, 1.0);
+    let c2 = c * c;
+    let s2 = 1.0 - c2;
+    let t0 = eta * eta - k * k - s2;
+    let a2b2 = (t0 * t0 + 4.0 * eta * eta * k * k).sqrt();
+    let t1 = a2b2 + c2;
+    // a^2 = (|z| + Re z) / 2, without cancellation when Re z < 0.
+    let a2 = if t0 >= 0.0 {
+        0.5 * (a2b2 + t0)
+    } else {
+        2.0 * eta * eta * k * k / (a2b2 - t0)
+    };
+    let a = a2.max(0.0).sqrt();
+    let t2 = 2.0 * c * a;
+    let rs = (t1 - t2) / (t1 + t2);
+    let t3 = c2 * a2b2 + s2 * s2;
+    let t4 = t2 * s2;
+    let rp = rs * (t3 - t4) / (t3 + t4);
+    let r = 0.5 * (rp + rs);
+    if r.is_finite() {
+        r
+    } else {
+        // 0/0 at grazing incidence on an index-matched, lossless medium.
+        1.0
+    }
 }
 
 /// [`fr_complex`] per RGB channel.
@@ -138,6 +105,93 @@ pub fn fr_complex_rgb(cos_i: f32, eta: Rgb, k: Rgb) -> Rgb {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Minimal complex arithmetic for the conductor Fresnel term.
+    #[derive(Clone, Copy, Debug)]
+    struct Complex {
+        re: f32,
+        im: f32,
+    }
+
+    impl Complex {
+        const fn new(re: f32, im: f32) -> Self {
+            Complex { re, im }
+        }
+        fn real(re: f32) -> Self {
+            Complex { re, im: 0.0 }
+        }
+        fn add(self, o: Complex) -> Complex {
+            Complex::new(self.re + o.re, self.im + o.im)
+        }
+        fn sub(self, o: Complex) -> Complex {
+            Complex::new(self.re - o.re, self.im - o.im)
+        }
+        fn mul(self, o: Complex) -> Complex {
+            Complex::new(
+                self.re * o.re - self.im * o.im,
+                self.re * o.im + self.im * o.re,
+            )
+        }
+        fn div(self, o: Complex) -> Complex {
+            let d = o.re * o.re + o.im * o.im;
+            Complex::new(
+                (self.re * o.re + self.im * o.im) / d,
+                (self.im * o.re - self.re * o.im) / d,
+            )
+        }
+        /// Squared magnitude.
+        fn norm(self) -> f32 {
+            self.re * self.re + self.im * self.im
+        }
+        /// Principal square root (non-negative real part).
+        fn sqrt(self) -> Complex {
+            let n = self.norm().sqrt();
+            if n == 0.0 {
+                return Complex::real(0.0);
+            }
+            let t1 = (0.5 * (n + self.re.abs())).sqrt();
+            let t2 = 0.5 * self.im / t1;
+            if self.re >= 0.0 {
+                Complex::new(t1, t2)
+            } else {
+                Complex::new(t2.abs(), t1.copysign(self.im))
+            }
+        }
+    }
+
+    /// The complex-number form of the conductor Fresnel equations.
+    fn fr_complex_reference(cos_i: f32, eta: f32, k: f32) -> f32 {
+        let cos_i = cos_i.clamp(0.0, 1.0);
+        let eta = Complex::new(eta, k);
+        let ci = Complex::real(cos_i);
+        let sin2_i = Complex::real(1.0 - cos_i * cos_i);
+        let sin2_t = sin2_i.div(eta.mul(eta));
+        let cos_t = Complex::real(1.0).sub(sin2_t).sqrt();
+        let r_parl = eta.mul(ci).sub(cos_t).div(eta.mul(ci).add(cos_t));
+        let r_perp = ci.sub(eta.mul(cos_t)).div(ci.add(eta.mul(cos_t)));
+        (r_parl.norm() + r_perp.norm()) / 2.0
+    }
+
+    #[test]
+    fn real_form_equals_complex_form() {
+        let etas = [0.05f32, 0.2, 0.5, 1.0, 1.1, 1.5, 2.4, 3.0];
+        let ks = [0.0f32, 0.01, 0.5, 2.4, 3.9, 10.0, 200.0];
+        let mut worst = 0.0f32;
+        for i in 0..=50 {
+            let c = i as f32 / 50.0;
+            for &eta in &etas {
+                for &k in &ks {
+                    if eta == 1.0 && k == 0.0 {
+                        continue;
+                    }
+                    let (a, b) = (fr_complex(c, eta, k), fr_complex_reference(c, eta, k));
+                    assert!((a - b).abs() < 5e-6, "cos {c} eta {eta} k {k}: {a} vs {b}");
+                    worst = worst.max((a - b).abs());
+                }
+            }
+        }
+        println!("largest difference {worst:e}");
+    }
 
     #[test]
     fn glass_at_normal_incidence() {
