@@ -161,7 +161,8 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
         .map_err(|d| anyhow::anyhow!("{d}"))?;
     let ps = &l.options.integrator.photon;
-    let maps = PhotonMaps::build(&l.scene, ps, 0);
+    let never = std::sync::atomic::AtomicBool::new(false);
+    let maps = PhotonMaps::build(&l.scene, ps, 0, &never).expect("not cancelled");
     let emitted = (ps.global_photons + ps.caustic_photons) as f64;
     let st = &maps.stats;
     println!(

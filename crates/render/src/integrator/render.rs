@@ -221,9 +221,7 @@ fn render_in_pool(
     // An interrupt during it leaves no maps; the loop below then stops
     // before its first pass.
     let maps = (integrator.kind == IntegratorKind::Photon)
-        .then(|| {
-            PhotonMaps::build_cancellable(scene, &integrator.photon, settings.seed, hooks.cancel)
-        })
+        .then(|| PhotonMaps::build(scene, &integrator.photon, settings.seed, hooks.cancel))
         .flatten();
     let pixel_spread = settings.filter.sample_spread();
     let mut pass_time_sum = Duration::ZERO;

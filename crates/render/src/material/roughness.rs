@@ -30,13 +30,9 @@ impl Roughness {
         }
     }
 
-    pub fn alphas(&self, t: &Textures, c: &TexCtx) -> (f32, f32) {
-        (self.alpha(self.u.eval(t, c)), self.alpha(self.v.eval(t, c)))
-    }
-
     /// The microfacet distribution at a shading point.
     pub fn microfacet(&self, t: &Textures, c: &TexCtx) -> Microfacet {
-        let (ax, ay) = self.alphas(t, c);
+        let (ax, ay) = (self.alpha(self.u.eval(t, c)), self.alpha(self.v.eval(t, c)));
         Microfacet::new(self.model, ax, ay)
     }
 

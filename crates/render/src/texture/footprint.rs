@@ -65,6 +65,20 @@ impl Footprint {
 
     /// Approximate dp/dx and dp/dy at point `p` with normal `n` (world space).
     pub fn dp_dxy(&self, p: Vec3, n: Vec3) -> (Vec3, Vec3) {
+        let (px, py) = self.pixel_dp_dxy(p, n);
+        (px * self.spp_scale, py * self.spp_scale)
+    }
+
+    /// Area of one pixel's footprint on the tangent plane at `p` (normal
+    /// `n`): the camera's differentials without the sample-count scale. 0
+    /// without a camera.
+    pub fn pixel_area(&self, p: Vec3, n: Vec3) -> f32 {
+        let (dx, dy) = self.pixel_dp_dxy(p, n);
+        dx.cross(dy).length()
+    }
+
+    /// One pixel's dp/dx, dp/dy (world space); zero without a camera.
+    fn pixel_dp_dxy(&self, p: Vec3, n: Vec3) -> (Vec3, Vec3) {
         if self.spp_scale == 0.0 {
             return (Vec3::ZERO, Vec3::ZERO);
         }
@@ -91,20 +105,9 @@ impl Footprint {
         };
         let (px, py) = (hit(self.dir_dx), hit(self.dir_dy));
         (
-            self.world_from_camera.vector(px * self.spp_scale),
-            self.world_from_camera.vector(py * self.spp_scale),
+            self.world_from_camera.vector(px),
+            self.world_from_camera.vector(py),
         )
-    }
-
-    /// Area of one pixel's footprint on the tangent plane at `p` (normal
-    /// `n`): the camera's differentials without the sample-count scale. 0
-    /// without a camera.
-    pub fn pixel_area(&self, p: Vec3, n: Vec3) -> f32 {
-        if self.spp_scale == 0.0 {
-            return 0.0;
-        }
-        let (dx, dy) = self.dp_dxy(p, n);
-        dx.cross(dy).length() / (self.spp_scale * self.spp_scale)
     }
 
     /// The texture context at a hit: footprint and uv derivatives by least

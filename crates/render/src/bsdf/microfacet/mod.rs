@@ -54,6 +54,15 @@ pub(crate) fn sin2_theta(w: Vec3) -> f32 {
 pub(crate) fn tan2_theta(w: Vec3) -> f32 {
     sin2_theta(w) / cos2_theta(w)
 }
+/// `w` flipped to the upper hemisphere, where microfacet normals live.
+#[inline]
+fn upper(w: Vec3) -> Vec3 {
+    if w.z < 0.0 {
+        -w
+    } else {
+        w
+    }
+}
 /// `(cos^2 phi, sin^2 phi)`; `(1, 0)` at the pole.
 #[inline]
 fn cos2_sin2_phi(w: Vec3) -> (f32, f32) {
@@ -147,8 +156,7 @@ impl Microfacet {
         if cos == 0.0 {
             return 0.0;
         }
-        let w_up = if w.z < 0.0 { -w } else { w };
-        self.g1(w) / cos * self.d(wm) * w_up.dot(wm).max(0.0)
+        self.g1(w) / cos * self.d(wm) * upper(w).dot(wm).max(0.0)
     }
 
     /// Density of [`Self::sample_wm`] (per solid angle of `wm`); 0 for
@@ -157,8 +165,7 @@ impl Microfacet {
         match self.model {
             MicrofacetModel::TrowbridgeReitz => self.d_visible(w, wm),
             MicrofacetModel::Beckmann => {
-                let w_up = if w.z < 0.0 { -w } else { w };
-                if w_up.dot(wm) <= 0.0 {
+                if upper(w).dot(wm) <= 0.0 {
                     0.0
                 } else {
                     self.d(wm) * wm.z.abs()
@@ -172,7 +179,7 @@ impl Microfacet {
     /// when the sampled normal faces away from `w` (Beckmann only: its
     /// sampling is not restricted to visible normals).
     pub fn sample_wm(&self, w: Vec3, u: Vec2) -> Option<Vec3> {
-        let w_up = if w.z < 0.0 { -w } else { w };
+        let w_up = upper(w);
         match self.model {
             MicrofacetModel::TrowbridgeReitz => Some(trowbridge_reitz::sample_wm(self, w_up, u)),
             MicrofacetModel::Beckmann => {

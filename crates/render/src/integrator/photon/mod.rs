@@ -141,13 +141,9 @@ pub struct PhotonMaps {
 }
 
 impl PhotonMaps {
-    pub fn build(scene: &Scene, s: &PhotonSettings, seed: u64) -> PhotonMaps {
-        Self::build_cancellable(scene, s, seed, &AtomicBool::new(false)).expect("not cancelled")
-    }
-
-    /// [`Self::build`] that gives up (`None`) soon after `cancel` is set, so
-    /// an interrupt during a long photon pass ends the render at once.
-    pub fn build_cancellable(
+    /// Traces and builds the maps; gives up (`None`) soon after `cancel` is
+    /// set, so an interrupt during a long photon pass ends the render at once.
+    pub fn build(
         scene: &Scene,
         s: &PhotonSettings,
         seed: u64,
@@ -164,7 +160,7 @@ impl PhotonMaps {
             0.02 * scene.bounds.bounding_sphere().1.max(1e-6)
         };
         let t0 = Instant::now();
-        let g = trace::trace_photons_cancellable(
+        let g = trace::trace_photons(
             scene,
             s.global_photons,
             trace::MapKind::Global,
@@ -175,7 +171,7 @@ impl PhotonMaps {
         )?;
         let targets =
             Some(aim::Targets::from_scene(scene)).filter(|t| s.aim_caustics && !t.is_empty());
-        let c = trace::trace_photons_cancellable(
+        let c = trace::trace_photons(
             scene,
             s.caustic_photons,
             trace::MapKind::Caustic,

@@ -28,22 +28,9 @@ pub struct Traced {
 
 const CHUNK: u64 = 4096;
 
-pub fn trace_photons(
-    scene: &Scene,
-    n_emit: u64,
-    kind: MapKind,
-    seed: u64,
-    max_depth: u32,
-    targets: Option<&Targets>,
-) -> Traced {
-    let never = AtomicBool::new(false);
-    trace_photons_cancellable(scene, n_emit, kind, seed, max_depth, targets, &never)
-        .expect("not cancelled")
-}
-
-/// [`trace_photons`] that gives up (`None`) soon after `cancel` is set:
+/// Traces `n_emit` photons; gives up (`None`) soon after `cancel` is set:
 /// chunks not yet started are skipped.
-pub fn trace_photons_cancellable(
+pub fn trace_photons(
     scene: &Scene,
     n_emit: u64,
     kind: MapKind,
