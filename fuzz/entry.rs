@@ -11,7 +11,7 @@ use std::path::Path;
 /// up in a folder that does not exist).
 pub fn scene(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
-    let ov = lumis_render::load::BuildOverrides::default();
+    let ov = lumis_render::load::Overrides::default();
     let _ = lumis_render::load::load_text(
         &text,
         "fuzz.pbrt",

@@ -1,6 +1,8 @@
 //! Command-line arguments as typed (first stage); `run.rs` turns them into settings.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Arg, ArgAction, ArgMatches, Args, FromArgMatches, Parser, Subcommand};
+use lumis_render::integrator::photon::PARAMS;
+use lumis_scene::ParamSpec;
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -85,7 +87,7 @@ pub struct RenderArgs {
     /// Random seed.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Integrator: path or direct (overrides the scene's).
+    /// Integrator: path, direct or photon (overrides the scene's).
     #[arg(long)]
     pub integrator: Option<String>,
     /// Maximum path depth (overrides the scene's maxdepth).
@@ -109,38 +111,10 @@ pub struct RenderArgs {
     /// Ray-tracing backend: the built-in BVH, or Embree 3 (builds with `--features embree`).
     #[arg(long, value_name = "bvh|embree")]
     pub accel: Option<String>,
-    /// photon: caustics from `mis` (the seed's weights), `photons` only or `gather` rays only.
-    #[arg(long, value_name = "mis|photons|gather")]
-    pub caustics: Option<String>,
-    /// photon: MIS heuristic for the caustic weights.
-    #[arg(long, value_name = "balance|power")]
-    pub heuristic: Option<String>,
-    /// photon: alpha in q_1 at the first camera hit: `footprint` (the default, also `auto`:
-    /// samples per pixel discounted by the photon neighbourhoods a pixel reads), `spp`
-    /// (the seed's: samples per pixel) or `1`.
-    #[arg(long, value_name = "footprint|spp|1")]
-    pub alpha: Option<String>,
-    /// photon: photons emitted for the global map.
-    #[arg(long, value_name = "N")]
-    pub photons: Option<u64>,
-    /// photon: photons emitted for the caustic map.
-    #[arg(long, value_name = "N")]
-    pub caustic_photons: Option<u64>,
-    /// photon: nearest photons per estimate (m_1).
-    #[arg(long, value_name = "M1")]
-    pub nearest: Option<usize>,
-    /// photon: final-gather rays per shading point (m_2).
-    #[arg(long, value_name = "M2")]
-    pub gather_rays: Option<u32>,
-    /// photon: largest photon search radius in scene units (0: 2% of the scene radius).
-    #[arg(long, value_name = "R")]
-    pub max_radius: Option<f32>,
-    /// photon: emit caustic photons only towards perfectly specular shapes.
-    #[arg(long)]
-    pub aim_caustics: bool,
-    /// photon: caustic density-estimation kernel.
-    #[arg(long, value_name = "none|cone")]
-    pub kernel: Option<String>,
+    /// The integrators' own parameters (`--photons N`, `--caustics mis`, ...),
+    /// one flag per parameter the integrators declare.
+    #[command(flatten)]
+    pub params: IntegratorParams,
     /// Print no progress, only warnings, errors and the summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -157,10 +131,8 @@ pub struct RenderArgs {
     /// Seconds between checkpoints.
     #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
     pub checkpoint_every: f64,
-    /// Continue the render saved in FILE: alone, it reruns the saved command
-    /// (only --threads, --time, --checkpoint*, --display-server, -q/-v and
-    /// --stats may be given); with a scene, that scene and these options must
-    /// be the saved ones.
+    /// Continue the render saved in FILE, as it was set up (only -o, --threads,
+    /// --time, --checkpoint*, --display-server, -q/-v and --stats may be given).
     #[arg(long, value_name = "FILE")]
     pub resume: Option<PathBuf>,
     /// Stream the image as it converges to a tev viewer at HOST:PORT (tev listens on 127.0.0.1:14158).
@@ -169,6 +141,49 @@ pub struct RenderArgs {
     /// Test hook: make the sample at pixel X,Y with index S a NaN.
     #[arg(long, hide = true, value_name = "X,Y,S", value_parser = parse_triple)]
     pub inject_nan: Option<(u32, u32, u32)>,
+}
+
+/// Flags made from the integrators' parameter tables: `--caustic-photons N`
+/// for `"integer causticphotons"`, so each parameter is declared once.
+#[derive(Clone, Debug, Default)]
+pub struct IntegratorParams {
+    /// The parameters given, with their values as typed, in table order.
+    pub values: Vec<(&'static ParamSpec, String)>,
+}
+
+impl FromArgMatches for IntegratorParams {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        let values = PARAMS
+            .iter()
+            .filter_map(|s| m.get_one::<String>(s.name).map(|v| (s, v.clone())))
+            .collect();
+        Ok(IntegratorParams { values })
+    }
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        *self = IntegratorParams::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
+impl Args for IntegratorParams {
+    fn augment_args(mut cmd: clap::Command) -> clap::Command {
+        for s in PARAMS {
+            let mut a = Arg::new(s.name)
+                .long(s.words)
+                .value_name(s.value)
+                .help(format!("photon: {}", s.help))
+                .action(ArgAction::Set);
+            if s.ty == "bool" {
+                // `--aim-caustics` alone means true.
+                a = a.num_args(0..=1).default_missing_value("true");
+            }
+            cmd = cmd.arg(a);
+        }
+        cmd
+    }
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        IntegratorParams::augment_args(cmd)
+    }
 }
 
 fn parse_triple(s: &str) -> Result<(u32, u32, u32), String> {

@@ -7,8 +7,8 @@ use lumis_math::Vec3;
 use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays, MeshAccel};
 use lumis_render::integrator::photon::map::PhotonMap;
 use lumis_render::integrator::photon::PhotonMaps;
-use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
-use lumis_render::load::{load_text, BuildOverrides, LoadedScene, DEFAULT_SCENE};
+use lumis_render::integrator::{render, RenderOutcome};
+use lumis_render::load::{load_text, LoadedScene, Overrides, DEFAULT_SCENE};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -33,7 +33,7 @@ fn time_it(reps: usize, mut f: impl FnMut()) -> f64 {
 
 /// A whole render on all threads, seed 0, no progress display.
 fn render_all(l: &LoadedScene, spp: u32) -> RenderOutcome {
-    let settings = RenderSettings::from_options(&l.options, spp, 0, 0);
+    let settings = l.options.render_settings(spp, 0, 0);
     render(
         &l.scene,
         &l.options.integrator,
@@ -133,11 +133,8 @@ pub fn run(a: BenchArgs) -> Result<()> {
 
     // Path tracing the default scene.
     let res = if a.quick { 128 } else { 512 };
-    let ov = BuildOverrides {
-        resolution: Some((res, res)),
-        integrator: Some("path".into()),
-        ..Default::default()
-    };
+    let mut ov = Overrides::default();
+    ov.resolution(res, res).integrator("path");
     let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
         .map_err(|d| anyhow::anyhow!("{d}"))?;
     let spp = 4;
@@ -151,16 +148,14 @@ pub fn run(a: BenchArgs) -> Result<()> {
     );
 
     // Photon mapping on the default scene.
-    let mut ov = BuildOverrides {
-        integrator: Some("photon".into()),
-        ..Default::default()
-    };
+    let mut ov = Overrides::default();
+    ov.integrator("photon");
     if a.quick {
-        ov.resolution = Some((128, 128));
+        ov.resolution(128, 128);
     }
     let l = load_text(DEFAULT_SCENE, "<default>", Path::new("."), &ov)
         .map_err(|d| anyhow::anyhow!("{d}"))?;
-    let ps = &l.options.integrator.photon;
+    let ps = l.options.integrator.photon().expect("photon");
     let never = std::sync::atomic::AtomicBool::new(false);
     let maps = PhotonMaps::build(&l.scene, ps, 0, &never).expect("not cancelled");
     let emitted = (ps.global_photons + ps.caustic_photons) as f64;

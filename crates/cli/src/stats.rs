@@ -8,12 +8,7 @@ use std::sync::atomic::Ordering;
 use std::time::Duration;
 
 /// Wall time of each phase.
-#[derive(Default, Debug)]
-pub struct Phases {
-    pub parse: Duration,
-    pub build: Duration,
-    pub write: Duration,
-}
+pub use lumis_render::session::Phases;
 
 fn mrays(n: u64) -> String {
     n.to_string()
@@ -36,9 +31,9 @@ pub fn print(l: &LoadedScene, out: &RenderOutcome, ph: &Phases) {
         mrays(photon_rays),
         mrays(r.total() + photon_rays)
     );
-    let p = &l.options.integrator.photon;
+    let p = l.options.integrator.photon();
     let ps = out.photon_stats.as_ref();
-    if let Some(ps) = ps {
+    if let (Some(ps), Some(p)) = (ps, p) {
         eprintln!(
             "  photons      global map {} stored of {} emitted, caustic map {} stored of {} emitted",
             ps.global_stored, p.global_photons, ps.caustic_stored, p.caustic_photons
@@ -86,7 +81,7 @@ pub fn print_setup(l: &LoadedScene, settings: &RenderSettings, ph: &Phases) {
     );
     eprintln!(
         "lumis: {} {}x{} (crop {}x{}), {} spp, seed {}, sampler {:?}, maxdepth {}, threads {}",
-        o.integrator.kind.name(),
+        o.integrator.name(),
         o.resolution.0,
         o.resolution.1,
         o.crop.width(),
@@ -98,7 +93,7 @@ pub fn print_setup(l: &LoadedScene, settings: &RenderSettings, ph: &Phases) {
         },
         settings.seed,
         settings.sampler,
-        o.integrator.max_depth,
+        o.integrator.max_depth(),
         if settings.threads == 0 {
             rayon::current_num_threads()
         } else {

@@ -356,7 +356,8 @@ fn interrupt_writes_a_checkpoint_that_resumes() {
     let (spp, _) = exr_bits(&d.join("int.exr"));
     let ck = lumis_render::checkpoint::Checkpoint::load(&d.join("ck")).unwrap();
     assert_eq!(ck.state.spp_done, spp);
-    assert_eq!(ck.spp_target, 1_000_000);
+    let job = lumis_render::session::RenderJob::from_json(&ck.job).unwrap();
+    assert_eq!(job.budget.spp, Some(1_000_000));
     assert!(ck.state.film.pixels.iter().all(|p| p.n == spp as u64));
 }
 
@@ -537,7 +538,8 @@ fn a_time_only_render_resumes_with_a_new_budget() {
     assert!(o.status.success(), "{}", stderr(&o));
     let (first, _) = exr_bits(&d.join("t.exr"));
     let ck = lumis_render::checkpoint::Checkpoint::load(&d.join("ck")).unwrap();
-    assert_eq!((ck.spp_target, ck.state.spp_done), (0, first));
+    let job = lumis_render::session::RenderJob::from_json(&ck.job).unwrap();
+    assert_eq!((job.budget.spp, ck.state.spp_done), (None, first));
     // Without a budget there is no end: refused with the way out.
     let o = lumis(&d, &["render", "--resume", "ck"]);
     assert_eq!(o.status.code(), Some(1));

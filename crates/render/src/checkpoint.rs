@@ -1,13 +1,14 @@
-//! Checkpoints: a render's accumulated state (per-pixel Welford statistics,
-//! sample counts, the next pass, `alpha`, dropped-sample counts) in a small
-//! binary file, written atomically, so `lumis render --resume` can continue
-//! exactly where it stopped. Photon maps are not stored: they are rebuilt
-//! from the seed, which reproduces them bit for bit.
+//! Checkpoints: a render's job and accumulated state (per-pixel Welford
+//! statistics, splats, sample counts, the integrator's own state as opaque
+//! bytes, dropped-sample counts) in a small binary file, written atomically,
+//! so a render can be continued exactly where it stopped. Photon maps are
+//! not stored: they are rebuilt from the seed, which reproduces them bit for
+//! bit.
 //!
 //! Layout (little-endian): magic `LUMISCKP`, format version (u32), lumis
-//! version (string), scene hash (u64), seed (u64), target spp (u32), the
-//! command line and its folder (strings), the state, then an FNV-1a hash of
-//! everything before it (catches truncated or damaged files).
+//! version (string), scene hash (u64), the job (a string: the session's
+//! serialized `RenderJob`), the state, then an FNV-1a hash of everything
+//! before it (catches truncated or damaged files).
 
 use crate::film::{Film, Pixel, PixelBounds};
 use crate::integrator::{BadSample, RenderState};
@@ -16,7 +17,7 @@ use std::time::Duration;
 
 const MAGIC: &[u8; 8] = b"LUMISCKP";
 /// Bumped whenever the layout changes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 /// Bytes per saved pixel: n, mean[3], m2[3].
 const PIXEL_BYTES: usize = 56;
 
@@ -24,14 +25,10 @@ const PIXEL_BYTES: usize = 56;
 pub struct Checkpoint {
     /// The lumis version that wrote it; others refuse it (sampling may differ).
     pub lumis_version: String,
-    /// Hash of the scene text and every setting that changes the image.
+    /// Hash of every input file and every setting that changes the image.
     pub scene_hash: u64,
-    pub seed: u64,
-    /// Samples per pixel the render aims at (0: time budget only).
-    pub spp_target: u32,
-    /// Command line (without the program name) and the folder it ran in.
-    pub command: Vec<String>,
-    pub cwd: String,
+    /// The render job, serialized by the session (JSON).
+    pub job: String,
     pub state: RenderState,
 }
 
@@ -91,15 +88,10 @@ impl Checkpoint {
         o.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
         put_str(&mut o, &self.lumis_version);
         o.extend_from_slice(&self.scene_hash.to_le_bytes());
-        o.extend_from_slice(&self.seed.to_le_bytes());
-        o.extend_from_slice(&self.spp_target.to_le_bytes());
-        o.extend_from_slice(&(self.command.len() as u32).to_le_bytes());
-        for a in &self.command {
-            put_str(&mut o, a);
-        }
-        put_str(&mut o, &self.cwd);
+        put_str(&mut o, &self.job);
         o.extend_from_slice(&st.spp_done.to_le_bytes());
-        o.extend_from_slice(&st.alpha.to_bits().to_le_bytes());
+        o.extend_from_slice(&(st.integrator.len() as u32).to_le_bytes());
+        o.extend_from_slice(&st.integrator);
         o.extend_from_slice(&st.bad_samples.to_le_bytes());
         let fb = st.first_bad.map_or([u32::MAX; 3], |b| [b.x, b.y, b.sample]);
         for v in fb {
@@ -119,9 +111,16 @@ impl Checkpoint {
         ] {
             o.extend_from_slice(&v.to_le_bytes());
         }
+        o.extend_from_slice(&f.splat_samples.to_le_bytes());
+        o.push(!f.splats.is_empty() as u8);
         for p in &f.pixels {
             o.extend_from_slice(&p.n.to_le_bytes());
             for v in p.mean.iter().chain(&p.m2) {
+                o.extend_from_slice(&v.to_bits().to_le_bytes());
+            }
+        }
+        for s in &f.splats {
+            for v in s {
                 o.extend_from_slice(&v.to_bits().to_le_bytes());
             }
         }
@@ -163,18 +162,10 @@ impl Checkpoint {
         }
         r.b = body;
         let scene_hash = r.u64()?;
-        let seed = r.u64()?;
-        let spp_target = r.u32()?;
-        let n_args = r.u32()? as usize;
-        if n_args > r.left() / 8 {
-            return Err(damaged("bad command length"));
-        }
-        let command = (0..n_args)
-            .map(|_| r.string())
-            .collect::<Result<Vec<_>, _>>()?;
-        let cwd = r.string()?;
+        let job = r.string()?;
         let spp_done = r.u32()?;
-        let alpha = f32::from_bits(r.u32()?);
+        let n_state = r.u32()? as usize;
+        let integrator = r.take(n_state)?.to_vec();
         let bad_samples = r.u64()?;
         let fb = [r.u32()?, r.u32()?, r.u32()?];
         let first_bad = (fb != [u32::MAX; 3]).then_some(BadSample {
@@ -198,7 +189,10 @@ impl Checkpoint {
         {
             return Err(damaged("bad film bounds"));
         }
-        if bounds.area().checked_mul(PIXEL_BYTES as u64) != Some(r.left() as u64) {
+        let splat_samples = r.u32()?;
+        let has_splats = r.take(1)?[0] != 0;
+        let per_pixel = PIXEL_BYTES as u64 + if has_splats { 24 } else { 0 };
+        if bounds.area().checked_mul(per_pixel) != Some(r.left() as u64) {
             return Err(damaged("pixel data does not match the film size"));
         }
         let mut pixels = Vec::with_capacity(bounds.area() as usize);
@@ -214,21 +208,31 @@ impl Checkpoint {
                 m2: [v[3], v[4], v[5]],
             });
         }
+        let mut splats = Vec::new();
+        if has_splats {
+            splats.reserve(bounds.area() as usize);
+            for _ in 0..bounds.area() {
+                splats.push([
+                    f64::from_bits(r.u64()?),
+                    f64::from_bits(r.u64()?),
+                    f64::from_bits(r.u64()?),
+                ]);
+            }
+        }
         Ok(Checkpoint {
             lumis_version,
             scene_hash,
-            seed,
-            spp_target,
-            command,
-            cwd,
+            job,
             state: RenderState {
                 film: Film {
                     full_resolution: full,
                     bounds,
                     pixels,
+                    splats,
+                    splat_samples,
                 },
                 spp_done,
-                alpha,
+                integrator,
                 bad_samples,
                 first_bad,
                 rays,
@@ -324,17 +328,16 @@ mod tests {
             p.add(Rgb::new(i as f32, 0.1, 1e-30));
             p.add(Rgb::new(0.3, i as f32 * 7.0, 2.0));
         }
+        film.add_splat(2, 1, Rgb::new(0.5, 1e-20, 3.0));
+        film.splat_samples = 2;
         Checkpoint {
             lumis_version: env!("CARGO_PKG_VERSION").into(),
             scene_hash: 42,
-            seed: 7,
-            spp_target: 16,
-            command: vec!["render".into(), "a b.pbrt".into()],
-            cwd: "/tmp".into(),
+            job: r#"{"scene": "a b.pbrt"}"#.into(),
             state: RenderState {
                 film,
                 spp_done: 2,
-                alpha: 16.0,
+                integrator: vec![1, 2, 3, 4],
                 bad_samples: 3,
                 first_bad: Some(BadSample {
                     sample: 1,
@@ -353,8 +356,26 @@ mod tests {
         let bytes = c.encode();
         let d = Checkpoint::decode(&bytes, "x").unwrap();
         assert_eq!(d.encode(), bytes);
-        assert_eq!(d.command, c.command);
+        assert_eq!(d.job, c.job);
+        assert_eq!(d.state.integrator, c.state.integrator);
         assert_eq!(d.state.first_bad, c.state.first_bad);
+        assert_eq!(d.state.film.splat_samples, 2);
+        assert_eq!(
+            d.state
+                .film
+                .splats
+                .concat()
+                .iter()
+                .map(|v| v.to_bits())
+                .collect::<Vec<_>>(),
+            c.state
+                .film
+                .splats
+                .concat()
+                .iter()
+                .map(|v| v.to_bits())
+                .collect::<Vec<_>>()
+        );
         for (a, b) in d.state.film.pixels.iter().zip(&c.state.film.pixels) {
             assert_eq!(a.n, b.n);
             assert_eq!(a.mean.map(f64::to_bits), b.mean.map(f64::to_bits));

@@ -14,4 +14,5 @@ pub mod load;
 pub mod material;
 pub mod metrics;
 pub mod scene;
+pub mod session;
 pub mod texture;

@@ -6,7 +6,7 @@
 
 mod support;
 
-use lumis_render::load::BuildOverrides;
+use lumis_render::load::Overrides;
 use support::*;
 
 fn scene(integrator: &str, maxdepth: u32) -> String {
@@ -50,7 +50,7 @@ fn render(integrator: &str, maxdepth: u32, spp: u32) -> Vec<(f64, f64)> {
 }
 
 fn render_text(text: &str, integrator: &str, spp: u32) -> Vec<(f64, f64)> {
-    let l = load(text, &BuildOverrides::default());
+    let l = load(text, &Overrides::default());
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);
     let out = render_loaded(&l, spp, 3, 0);
     assert_eq!(out.bad_samples, 0, "{integrator}: NaN/inf samples");

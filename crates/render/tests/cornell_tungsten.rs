@@ -4,7 +4,7 @@
 mod support;
 
 use lumis_render::image_io::read_image;
-use lumis_render::load::{load_path, BuildOverrides};
+use lumis_render::load::{load_path, Overrides};
 use support::*;
 
 const BLOCK: u32 = 8;
@@ -16,7 +16,7 @@ fn cornell_box_matches_tungsten() {
     };
     matches_tungsten(
         &scene,
-        BuildOverrides::default(),
+        Overrides::default(),
         "bitterli-cornell-box/tungsten/TungstenRender.exr",
         (64, 64),
         256,
@@ -81,10 +81,8 @@ fn veach_mis_matches_tungsten() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("scene-v4-as-tungsten.pbrt");
     std::fs::write(&path, text).unwrap();
-    let ov = BuildOverrides {
-        max_depth: Some(1),
-        ..Default::default()
-    };
+    let mut ov = Overrides::default();
+    ov.max_depth(1);
     matches_tungsten(
         &path,
         ov,
@@ -99,7 +97,7 @@ fn veach_mis_matches_tungsten() {
 /// box-downsampled to `res`: channel means within 2% and 8x8-block errors.
 fn matches_tungsten(
     scene: &std::path::Path,
-    ov: BuildOverrides,
+    ov: Overrides,
     reference: &str,
     res: (u32, u32),
     spp: u32,
@@ -108,10 +106,8 @@ fn matches_tungsten(
         return;
     };
     let (rx, ry) = res;
-    let ov = BuildOverrides {
-        resolution: Some(res),
-        ..ov
-    };
+    let mut ov = ov;
+    ov.resolution(res.0, res.1);
     let l = load_path(scene, &ov).unwrap_or_else(|e| panic!("{e}"));
     assert!(
         l.warnings

@@ -7,7 +7,7 @@
 mod support;
 
 use lumis_render::image_io::{read_image, write_image, RgbImage};
-use lumis_render::load::{BuildOverrides, DEFAULT_SCENE};
+use lumis_render::load::{Overrides, DEFAULT_SCENE};
 use std::path::PathBuf;
 use support::*;
 
@@ -30,12 +30,10 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn overrides() -> BuildOverrides {
-    BuildOverrides {
-        resolution: Some((RES, RES)),
-        integrator: Some("path".into()),
-        ..Default::default()
-    }
+fn overrides() -> Overrides {
+    let mut o = Overrides::default();
+    o.resolution(RES, RES).integrator("path");
+    o
 }
 
 /// A render whose samples are clamped at [`CLAMP`], as the reference's.

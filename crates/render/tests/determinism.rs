@@ -2,18 +2,14 @@
 
 mod support;
 
-use lumis_math::SamplerKind;
-use lumis_render::load::{BuildOverrides, DEFAULT_SCENE};
+use lumis_render::load::{Overrides, DEFAULT_SCENE};
 use support::*;
 
 #[test]
 fn image_is_independent_of_thread_count() {
-    for sampler in [SamplerKind::Sobol, SamplerKind::Independent] {
-        let ov = BuildOverrides {
-            resolution: Some((40, 30)),
-            sampler: Some(sampler),
-            ..Default::default()
-        };
+    for sampler in ["sobol", "independent"] {
+        let mut ov = Overrides::default();
+        ov.resolution(40, 30).sampler(sampler);
         let l = load(DEFAULT_SCENE, &ov);
         let one = render_loaded(&l, 8, 3, 1).film.mean_image();
         let two = render_loaded(&l, 8, 3, 2).film.mean_image();
@@ -38,14 +34,12 @@ fn image_is_independent_of_thread_count() {
 
 #[test]
 fn photon_image_is_independent_of_thread_count() {
-    let mut ov = BuildOverrides {
-        resolution: Some((24, 24)),
-        integrator: Some("photon".into()),
-        ..Default::default()
-    };
-    ov.photon.photons = Some(20_000);
-    ov.photon.caustic_photons = Some(50_000);
-    ov.photon.gather_rays = Some(4);
+    let mut ov = Overrides::default();
+    ov.resolution(24, 24)
+        .integrator("photon")
+        .integrator_param("integer photons", "20000")
+        .integrator_param("integer causticphotons", "50000")
+        .integrator_param("integer gatherrays", "4");
     let l = load(DEFAULT_SCENE, &ov);
     let one = render_loaded(&l, 2, 3, 1).film.mean_image();
     let two = render_loaded(&l, 2, 3, 2).film.mean_image();

@@ -122,11 +122,8 @@ fn same_hits_as_the_builtin_bvh() {
 
 #[test]
 fn same_image_as_the_builtin_bvh() {
-    let ov = lumis_render::load::BuildOverrides {
-        resolution: Some((32, 32)),
-        integrator: Some("path".into()),
-        ..Default::default()
-    };
+    let mut ov = lumis_render::load::Overrides::default();
+    ov.resolution(32, 32).integrator("path");
     let mut l = load(DEFAULT_SCENE, &ov);
     let a = render_loaded(&l, 8, 5, 0);
     l.scene.use_embree(true);

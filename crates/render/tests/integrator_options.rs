@@ -1,11 +1,11 @@
 //! The scene file's `Integrator`: lumis' own, pbrt-v4's others as located
 //! warnings with the fallback they get, and the command line winning.
 
-use lumis_render::integrator::IntegratorKind;
-use lumis_render::load::{load_text, BuildOverrides, LoadedScene};
+use lumis_render::integrator::Integrator;
+use lumis_render::load::{load_text, LoadedScene, Overrides};
 use std::path::Path;
 
-fn load(integrator: &str, ov: &BuildOverrides) -> LoadedScene {
+fn load(integrator: &str, ov: &Overrides) -> LoadedScene {
     let text = format!(
         "{integrator}\nFilm \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
          Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n\
@@ -19,12 +19,12 @@ fn sppm_scenes_render_with_photon() {
     let l = load(
         r#"Integrator "sppm" "integer maxdepth" 7 "float radius" 0.1
            "integer photonsperiteration" 100000 "integer seed" 3"#,
-        &BuildOverrides::default(),
+        &Overrides::default(),
     );
     let i = &l.options.integrator;
-    assert_eq!((i.kind, i.max_depth), (IntegratorKind::Photon, 7));
+    assert_eq!((i.name(), i.max_depth()), ("photon", 7));
     // The photon method's own defaults, sized by its depth.
-    assert_eq!(i.photon.max_depth, 7);
+    assert_eq!(i.photon().unwrap().max_depth, 7);
     // One warning, located, and none about SPPM's parameters.
     assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
     let w = &l.warnings[0];
@@ -37,10 +37,10 @@ fn other_pbrt_integrators_fall_back_to_path() {
     for ty in ["bdpt", "mlt", "lightpath", "volpath"] {
         let l = load(
             &format!(r#"Integrator "{ty}" "integer maxdepth" 4"#),
-            &BuildOverrides::default(),
+            &Overrides::default(),
         );
         let i = &l.options.integrator;
-        assert_eq!((i.kind, i.max_depth), (IntegratorKind::Path, 4), "{ty}");
+        assert_eq!(*i, Integrator::Path { max_depth: 4 }, "{ty}");
         assert_eq!(l.warnings.len(), 1, "{ty}: {:?}", l.warnings);
         assert!(l.warnings[0].message.contains("using `path`"));
     }
@@ -48,10 +48,8 @@ fn other_pbrt_integrators_fall_back_to_path() {
 
 #[test]
 fn command_line_integrator_wins() {
-    let ov = BuildOverrides {
-        integrator: Some("direct".into()),
-        ..Default::default()
-    };
+    let mut ov = Overrides::default();
+    ov.integrator("direct");
     let l = load(r#"Integrator "sppm""#, &ov);
-    assert_eq!(l.options.integrator.kind, IntegratorKind::Direct);
+    assert!(matches!(l.options.integrator, Integrator::Direct { .. }));
 }

@@ -2,8 +2,7 @@
 //! allocated: a counting allocator records the largest single allocation
 //! made by this thread while the input is read.
 
-use lumis_render::load::photon::PhotonOverrides;
-use lumis_render::load::{load_text, BuildOverrides};
+use lumis_render::load::{load_text, Overrides};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::path::Path;
@@ -59,7 +58,7 @@ property float y\nproperty float z\nelement face 1000000000000\nproperty list uc
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("huge.ply"), text).unwrap();
     let s = scene("", "Shape \"plymesh\" \"string filename\" \"huge.ply\"\n");
-    let (r, big) = largest_alloc(|| load_text(&s, "s.pbrt", &dir, &BuildOverrides::default()));
+    let (r, big) = largest_alloc(|| load_text(&s, "s.pbrt", &dir, &Overrides::default()));
     let e = r.err().expect("refused").to_string();
     assert!(e.contains("huge.ply") && e.contains("1000000000000"), "{e}");
     assert!(big < MIB, "allocated {big} bytes");
@@ -78,17 +77,14 @@ fn film_of_10_to_the_9_squared_pixels() {
         "\"integer xresolution\" [1000000000] \"integer yresolution\" [1000000000]",
         "",
     );
-    let (r, big) =
-        largest_alloc(|| load_text(&s, "s.pbrt", Path::new("."), &BuildOverrides::default()));
+    let (r, big) = largest_alloc(|| load_text(&s, "s.pbrt", Path::new("."), &Overrides::default()));
     let e = r.err().expect("refused").to_string();
     assert!(e.contains("1000000000x1000000000 is out of range"), "{e}");
     assert!(e.starts_with("s.pbrt:1:"), "{e}");
     assert!(big < MIB, "allocated {big} bytes");
     // The command line's --resolution is checked the same way.
-    let ov = BuildOverrides {
-        resolution: Some((1_000_000_000, 1_000_000_000)),
-        ..Default::default()
-    };
+    let mut ov = Overrides::default();
+    ov.resolution(1_000_000_000, 1_000_000_000);
     let (r, big) = largest_alloc(|| load_text(&scene("", ""), "s.pbrt", Path::new("."), &ov));
     assert!(r
         .err()
@@ -100,14 +96,10 @@ fn film_of_10_to_the_9_squared_pixels() {
 
 #[test]
 fn photon_budget_beyond_memory() {
-    let ov = BuildOverrides {
-        integrator: Some("photon".into()),
-        photon: PhotonOverrides {
-            photons: Some(1_000_000_000_000),
-            ..Default::default()
-        },
-        ..Default::default()
-    };
+    // The largest count a scene's integer holds: 2e9 photons, ~100 GiB of maps.
+    let mut ov = Overrides::default();
+    ov.integrator("photon")
+        .integrator_param("integer photons", "2000000000");
     let (r, big) = largest_alloc(|| load_text(&scene("", ""), "s.pbrt", Path::new("."), &ov));
     let e = r.err().expect("refused").to_string();
     assert!(e.contains("photons") && e.contains("GiB"), "{e}");

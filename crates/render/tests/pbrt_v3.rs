@@ -5,7 +5,7 @@
 mod support;
 
 use lumis_render::light::Light;
-use lumis_render::load::{load_path, BuildOverrides, LoadedScene};
+use lumis_render::load::{load_path, LoadedScene, Overrides};
 use support::*;
 
 fn triangles(l: &LoadedScene) -> usize {
@@ -20,7 +20,7 @@ fn caustic_glass_v3_and_v4_agree() {
     ) else {
         return;
     };
-    let ov = BuildOverrides::default();
+    let ov = Overrides::default();
     let a = load_path(&v3, &ov).unwrap_or_else(|e| panic!("{e}"));
     let b = load_path(&v4, &ov).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(triangles(&a), 88_064 + 2);

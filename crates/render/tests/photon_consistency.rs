@@ -12,7 +12,7 @@ mod support;
 
 use lumis_render::film::Film;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
-use lumis_render::load::{load_path, BuildOverrides};
+use lumis_render::load::{load_path, Overrides};
 use std::path::PathBuf;
 use support::*;
 
@@ -32,12 +32,10 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn ov(integrator: &str) -> BuildOverrides {
-    BuildOverrides {
-        crop: Some(CROP),
-        integrator: Some(integrator.into()),
-        ..Default::default()
-    }
+fn ov(integrator: &str) -> Overrides {
+    let mut o = Overrides::default();
+    o.crop_from(CROP, "test").integrator(integrator);
+    o
 }
 
 /// Region mean (channel average) and its standard error from per-pixel variances.
@@ -94,8 +92,8 @@ fn reference(name: &str) -> (f64, f64) {
 
 fn photon_region(name: &str, mode: &str, caustic_photons: u64, spp: u32) -> (f64, f64) {
     let mut o = ov("photon");
-    o.photon.caustics = Some(mode.into());
-    o.photon.caustic_photons = Some(caustic_photons);
+    o.integrator_param("string caustics", &format!("\"{mode}\""));
+    o.integrator_param("integer causticphotons", &caustic_photons.to_string());
     let l = load_path(&scene_path(name), &o).unwrap();
     region(&render_loaded(&l, spp, 7, 0).film)
 }
@@ -175,9 +173,9 @@ fn aimed_caustic_photons_match_path() {
     for aim in [false, true] {
         for mode in ["photons", "mis"] {
             let mut o = ov("photon");
-            o.photon.caustics = Some(mode.into());
-            o.photon.caustic_photons = Some(1_000_000);
-            o.photon.aim_caustics = Some(aim);
+            o.integrator_param("string caustics", &format!("\"{mode}\""));
+            o.integrator_param("integer causticphotons", "1000000");
+            o.integrator_param("bool aimcaustics", &aim.to_string());
             let l = load_path(&scene_path(name), &o).unwrap();
             let out = render_loaded(&l, 64, 7, 0);
             let (m, se) = region(&out.film);
@@ -230,8 +228,8 @@ fn mis_beats_both_baselines_at_equal_samples_on_the_glossy_floor() {
     let spp = 1024;
     let mse = |mode: &str, alpha: &str, seeds: &[u64]| {
         let mut o = ov("photon");
-        o.photon.caustics = Some(mode.into());
-        o.photon.alpha = Some(alpha.into());
+        o.integrator_param("string caustics", &format!("\"{mode}\""));
+        o.integrator_param("string alpha", &format!("\"{alpha}\""));
         let l = load_path(&scene_path(name), &o).unwrap();
         let e: f64 = seeds
             .iter()

@@ -10,26 +10,18 @@ use lumis_render::film::Film;
 use lumis_render::integrator::{
     render_with, BadSample, RenderHooks, RenderOutcome, RenderSettings, RenderState,
 };
-use lumis_render::load::photon::PhotonOverrides;
-use lumis_render::load::{BuildOverrides, LoadedScene, DEFAULT_SCENE};
+use lumis_render::load::{LoadedScene, Overrides, DEFAULT_SCENE};
 use std::sync::atomic::{AtomicBool, Ordering};
 use support::load;
 
 fn scene(integrator: &str) -> LoadedScene {
-    load(
-        DEFAULT_SCENE,
-        &BuildOverrides {
-            resolution: Some((20, 14)),
-            integrator: Some(integrator.into()),
-            photon: PhotonOverrides {
-                photons: Some(20_000),
-                caustic_photons: Some(20_000),
-                gather_rays: Some(4),
-                ..Default::default()
-            },
-            ..Default::default()
-        },
-    )
+    let mut ov = Overrides::default();
+    ov.resolution(20, 14)
+        .integrator(integrator)
+        .integrator_param("integer photons", "20000")
+        .integrator_param("integer causticphotons", "20000")
+        .integrator_param("integer gatherrays", "4");
+    load(DEFAULT_SCENE, &ov)
 }
 
 /// Renders `settings`, stopping (as SIGINT would) once `stop_at` spp are done.
@@ -83,10 +75,7 @@ fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
     let ck = Checkpoint {
         lumis_version: env!("CARGO_PKG_VERSION").into(),
         scene_hash: 1,
-        seed: 11,
-        spp_target: spp,
-        command: vec![],
-        cwd: String::new(),
+        job: format!("{{\"seed\": 11, \"budget\": {{\"spp\": {spp}}}}}"),
         state: part.state(),
     };
     let back = Checkpoint::decode(&ck.encode(), "test").unwrap();

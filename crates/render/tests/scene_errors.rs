@@ -1,7 +1,7 @@
 //! The common scene mistakes, through the whole load (parse, then build):
 //! each message says where, what was expected, and the nearest known name.
 
-use lumis_render::load::{load_text, BuildOverrides};
+use lumis_render::load::{load_text, Overrides};
 use lumis_scene::Diagnostic;
 use std::path::Path;
 
@@ -9,7 +9,7 @@ const HEAD: &str = "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolu
 
 fn load(body: &str) -> Result<Vec<String>, String> {
     let text = format!("{HEAD}{body}");
-    load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
+    load_text(&text, "s.pbrt", Path::new("."), &Overrides::default())
         .map(|l| l.warnings.iter().map(Diagnostic::to_string).collect())
         .map_err(|e| e.to_string())
 }

@@ -4,7 +4,7 @@
 
 mod support;
 
-use lumis_render::load::{load_path, BuildOverrides};
+use lumis_render::load::{load_path, Overrides};
 use support::*;
 
 const SCENES: &[&str] = &[
@@ -67,13 +67,8 @@ fn shared_scenes_load_and_render_tiny() {
         let Some(path) = shared_scene(rel) else {
             return;
         };
-        let ov = BuildOverrides {
-            resolution: Some((16, 12)),
-            spp: Some(1),
-            integrator: Some("path".into()),
-            max_depth: Some(3),
-            ..Default::default()
-        };
+        let mut ov = Overrides::default();
+        ov.resolution(16, 12).spp(1).integrator("path").max_depth(3);
         let l = load_path(&path, &ov).unwrap_or_else(|e| panic!("{rel}: {e}"));
         let out = render_loaded(&l, 1, 0, 0);
         assert_eq!(out.bad_samples, 0, "{rel}: NaN/inf samples");

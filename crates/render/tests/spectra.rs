@@ -9,7 +9,7 @@ mod support;
 use lumis_math::spectrum::{cmf, fresnel_conductor, named, planck, NAMED};
 use lumis_math::{Rgb, PI};
 use lumis_render::light::Light;
-use lumis_render::load::{load_text, BuildOverrides, LoadedScene};
+use lumis_render::load::{load_text, LoadedScene, Overrides};
 use lumis_render::material::{ConductorSpec, MaterialKind};
 use lumis_render::texture::TexRgb;
 use std::path::Path;
@@ -170,7 +170,7 @@ fn unknown_spectrum_names_are_located_errors_listing_the_known_ones() {
     let text = format!(
         "{HEAD}Material \"conductor\" \"spectrum eta\" \"metal-Xx-eta\"\nShape \"sphere\"\n"
     );
-    let e = load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
+    let e = load_text(&text, "s.pbrt", Path::new("."), &Overrides::default())
         .err()
         .expect("an unknown name is an error")
         .to_string();
@@ -181,7 +181,7 @@ fn unknown_spectrum_names_are_located_errors_listing_the_known_ones() {
     }
     // Decreasing wavelengths, inline: located too.
     let text = format!("{HEAD}Material \"diffuse\" \"spectrum reflectance\" [ 500 0.5 400 0.5 ]\nShape \"sphere\"\n");
-    let e = load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
+    let e = load_text(&text, "s.pbrt", Path::new("."), &Overrides::default())
         .err()
         .expect("decreasing wavelengths are an error")
         .to_string();
@@ -293,7 +293,7 @@ fn killeroo_gold_spd_files_are_the_named_gold() {
 fn named_glass_is_one_index_with_a_dispersion_warning() {
     let text =
         format!("{HEAD}Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\nShape \"sphere\"\n");
-    let l = load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default()).unwrap();
+    let l = load_text(&text, "s.pbrt", Path::new("."), &Overrides::default()).unwrap();
     let MaterialKind::Dielectric(d) = &l.scene.materials[0].kind else {
         panic!("not a dielectric")
     };
@@ -320,7 +320,7 @@ fn film_white_balance_neutralises_a_light_of_that_temperature() {
                 ""
             )
         );
-        load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default()).unwrap()
+        load_text(&text, "s.pbrt", Path::new("."), &Overrides::default()).unwrap()
     };
     let l = scene("\"float whitebalance\" [ 3000 ] \"string sensor\" \"cie1931\"");
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);

@@ -4,7 +4,7 @@
 use lumis_math::{Rgb, Vec2, Vec3};
 use lumis_render::bsdf::TransportMode;
 use lumis_render::geometry::Ray;
-use lumis_render::load::{load_text, BuildOverrides};
+use lumis_render::load::{load_text, Overrides};
 
 /// A unit square in z = 0 (uv = xy), seen from above, with material `mat`.
 fn scene(textures: &str, mat: &str, dir: &std::path::Path) -> String {
@@ -25,7 +25,7 @@ Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 1 1 0 0 1 0] "integer indices" [0 1
 
 /// Diffuse reflectance at (x, y) of the square: pi * f.
 fn reflectance(text: &str, dir: &std::path::Path, x: f32, y: f32) -> Rgb {
-    let l = load_text(text, "t.pbrt", dir, &BuildOverrides::default()).unwrap();
+    let l = load_text(text, "t.pbrt", dir, &Overrides::default()).unwrap();
     let msgs: Vec<_> = l.warnings.iter().map(|d| &d.message).collect();
     assert!(msgs.is_empty(), "unexpected warnings: {msgs:?}");
     let s = &l.scene;
@@ -89,7 +89,7 @@ Material "diffuse" "texture reflectance" "i""#,
     ];
     for c in cases {
         let text = scene(c, "", &dir);
-        let e = load_text(&text, "t.pbrt", &dir, &BuildOverrides::default())
+        let e = load_text(&text, "t.pbrt", &dir, &Overrides::default())
             .err()
             .unwrap_or_else(|| panic!("no error for {c}"));
         assert!(e.loc.is_some(), "{}", e.message);

@@ -5,13 +5,15 @@
 pub mod desc;
 pub mod lexer;
 pub mod loc;
+pub mod overrides;
 pub mod params;
 pub mod parser;
 pub mod ply;
 
 pub use desc::*;
 pub use loc::{Diagnostic, Loc, Severity, SourceFile};
-pub use params::{Param, ParamSet, Value};
+pub use overrides::{Override, Overrides};
+pub use params::{Param, ParamSet, ParamSpec, Value};
 
 use std::path::Path;
 

@@ -317,3 +317,24 @@ fn arity(p: &Param, expected: &str) -> Diagnostic {
 
 #[cfg(test)]
 mod tests;
+
+/// A parameter as a reader declares it: its scene-file type and name, a
+/// one-line description, and the words of its command-line spelling (e.g.
+/// `caustic-photons` for `causticphotons`), so front ends can offer every
+/// parameter without declaring it again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParamSpec {
+    pub ty: &'static str,
+    pub name: &'static str,
+    pub words: &'static str,
+    /// What the value may be (for help texts): `N`, `R`, `mis|photons|gather`.
+    pub value: &'static str,
+    pub help: &'static str,
+}
+
+impl ParamSpec {
+    /// The names of `specs`, for unused-parameter reports.
+    pub fn names(specs: &[ParamSpec]) -> Vec<&'static str> {
+        specs.iter().map(|s| s.name).collect()
+    }
+}

@@ -9,15 +9,15 @@ mod report;
 mod store;
 
 use crate::args::{Cli, Command, StudyArgs};
-use crate::run::{install_interrupt_handler, overrides, CANCEL, EXIT_INTERRUPTED};
+use crate::run::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
 use anyhow::{anyhow, Result};
 use clap::Parser;
 use config::Config;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
-use lumis_render::integrator::{render, RenderOutcome};
-use lumis_render::load::LoadedScene;
-use lumis_render::load::{load_path, options::crop_bounds};
+use lumis_render::integrator::RenderHooks;
+use lumis_render::load::options::crop_bounds;
 use lumis_render::metrics::{compare, PixelError};
+use lumis_render::session::Session;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
@@ -213,29 +213,6 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Renders a loaded scene with `a`'s budget, seed, threads and clamp: the
-/// image (imaging scale applied; spp, integrator, seed and scene in its
-/// metadata) and the outcome. Stops early when [`CANCEL`] is set.
-fn render_loaded(
-    loaded: &LoadedScene,
-    a: &crate::args::RenderArgs,
-    scene_name: String,
-) -> (RgbImage, RenderOutcome) {
-    let o = &loaded.options;
-    // With only a time budget, the sample count is unbounded.
-    let spp = if a.time.is_some() && a.spp.is_none() {
-        0
-    } else {
-        o.spp
-    };
-    let settings = crate::run::render_settings(a, o, spp);
-    let out = render(&loaded.scene, &o.integrator, &settings, &|_| {}, &CANCEL);
-    let data = crate::run::scaled_mean(&out.film, o.imaging_scale, o.white_balance);
-    let mut img = RgbImage::new(out.film.width(), out.film.height(), data);
-    img.metadata = crate::run::image_metadata(&out, o, a.seed, scene_name);
-    (img, out)
-}
-
 /// Renders one run and writes its EXR, PNG and heatmap; None if interrupted
 /// (nothing of the run is kept then).
 fn render_run(
@@ -256,29 +233,40 @@ fn render_run(
         unreachable!("parsed as render")
     };
     let scene = &c.scenes[run.scene];
-    let loaded = load_path(&scene.file, &overrides(&ra)?).map_err(|d| anyhow!("{d}"))?;
-    if run.seed == c.seeds[0] && run.budget == c.budgets()[0] {
-        for w in &loaded.warnings {
-            eprintln!("{w}");
-        }
-    }
-    let (mut img, o) = render_loaded(&loaded, &ra, scene.file.display().to_string());
-    if o.interrupted {
-        return Ok(None);
-    }
-    img.metadata.push((
-        "lumis:study-run".into(),
-        format!("{id}: {}", args.join(" ")),
-    ));
-    let region = scene.mask.map(|m| crop_bounds((img.width, img.height), m));
-    let m = compare(&img, reference, region).map_err(|e| anyhow!("against the reference: {e}"))?;
     let dir: PathBuf = out.join(&scene.name);
     let (exr, png, heat) = (
         dir.join(format!("{id}.exr")),
         dir.join(format!("{id}.png")),
         dir.join(format!("{id}.err.png")),
     );
-    write_image(&exr, &img, 0.0)?;
+    std::fs::create_dir_all(&dir)?;
+    // The run as a job: its flags, its scene, its image.
+    let mut job = crate::job::job_from_args(&ra)?;
+    job.scene = Some(std::path::absolute(&scene.file)?);
+    job.outputs = vec![exr.clone()];
+    let session = Session::new(job)?;
+    if run.seed == c.seeds[0] && run.budget == c.budgets()[0] {
+        for w in &session.loaded.warnings {
+            eprintln!("{w}");
+        }
+    }
+    let o = session.render(RenderHooks {
+        progress: &|_| {},
+        cancel: &CANCEL,
+        after_pass: None,
+        resume: None,
+    });
+    if o.interrupted {
+        return Ok(None);
+    }
+    let mut img = session.image(&o, None);
+    img.metadata.push((
+        "lumis:study-run".into(),
+        format!("{id}: {}", args.join(" ")),
+    ));
+    let region = scene.mask.map(|m| crop_bounds((img.width, img.height), m));
+    let m = compare(&img, reference, region).map_err(|e| anyhow!("against the reference: {e}"))?;
+    session.write(&img)?;
     write_image(&png, &img, info.exposure)?;
     let kind = PixelError::from_name(&c.heatmap).expect("checked");
     let range = (c.heatmap_range[0], c.heatmap_range[1]);

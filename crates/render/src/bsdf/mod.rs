@@ -81,6 +81,15 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
+impl BsdfSample {
+    /// The path throughput factor of this sample at a surface with shading
+    /// normal `ns` (world-space samples): `f |cos| / pdf`.
+    #[inline]
+    pub fn weight(&self, ns: Vec3) -> Rgb {
+        self.f * (self.wi.dot(ns).abs() / self.pdf)
+    }
+}
+
 /// All BSDFs of lumis.
 #[derive(Clone, Copy, Debug)]
 pub enum Bsdf {

@@ -76,6 +76,12 @@ pub struct Film {
     pub full_resolution: (u32, u32),
     pub bounds: PixelBounds,
     pub pixels: Vec<Pixel>,
+    /// Sums of contributions splatted to pixels other than their sample's
+    /// (light tracing, bidirectional connections), one RGB per pixel; empty
+    /// until the first splat. They enter the image divided by
+    /// `splat_samples`, the samples per pixel taken (pbrt-v4's rule).
+    pub splats: Vec<[f64; 3]>,
+    pub splat_samples: u32,
 }
 
 impl Film {
@@ -84,6 +90,35 @@ impl Film {
             full_resolution,
             bounds,
             pixels: vec![Pixel::default(); bounds.area() as usize],
+            splats: Vec::new(),
+            splat_samples: 0,
+        }
+    }
+
+    /// The film's size and bounds without its pixels (a placeholder).
+    pub fn clone_header(&self) -> Film {
+        Film {
+            full_resolution: self.full_resolution,
+            bounds: self.bounds,
+            pixels: Vec::new(),
+            splats: Vec::new(),
+            splat_samples: self.splat_samples,
+        }
+    }
+
+    /// Adds `c` to the splat sum of full-film pixel (x, y); outside the
+    /// film's bounds it is dropped.
+    pub fn add_splat(&mut self, x: u32, y: u32, c: Rgb) {
+        let b = self.bounds;
+        if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 {
+            return;
+        }
+        if self.splats.is_empty() {
+            self.splats = vec![[0.0; 3]; self.pixels.len()];
+        }
+        let s = &mut self.splats[((y - b.y0) * b.width() + (x - b.x0)) as usize];
+        for (a, v) in s.iter_mut().zip([c.r, c.g, c.b]) {
+            *a += v as f64;
         }
     }
 
@@ -94,12 +129,23 @@ impl Film {
         self.bounds.height()
     }
 
-    /// Mean image, row-major RGB triples.
+    /// Mean image, row-major RGB triples: each pixel's sample mean, plus
+    /// its splats divided by the samples per pixel.
     pub fn mean_image(&self) -> Vec<f32> {
-        self.pixels
+        let mut img: Vec<f32> = self
+            .pixels
             .iter()
             .flat_map(|p| p.mean_rgb().to_array())
-            .collect()
+            .collect();
+        if !self.splats.is_empty() {
+            let inv = 1.0 / self.splat_samples.max(1) as f64;
+            for (px, s) in img.chunks_exact_mut(3).zip(&self.splats) {
+                for (v, a) in px.iter_mut().zip(s) {
+                    *v = (*v as f64 + a * inv) as f32;
+                }
+            }
+        }
+        img
     }
 
     /// Variance-of-the-mean image, row-major RGB triples.

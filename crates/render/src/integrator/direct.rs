@@ -36,7 +36,7 @@ pub fn li(
             let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
                 return l;
             };
-            beta *= bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+            beta *= bs.weight(hit.geom.ns);
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }

@@ -1,24 +1,31 @@
-//! Integrators: settings, per-path tracing and the shared light-sampling
-//! module; `render.rs` is the orchestration (passes, threads, budgets).
+//! Integrators: each one's settings, orchestration and per-path tracing, the
+//! shared render driver and the shared light-sampling module.
 //!
-//! To add an integrator: its tracer in a file here, a variant in
-//! [`IntegratorKind`], a branch in [`Integrator::li`], and its parameters in
-//! `load/options.rs`.
+//! - `driver.rs` runs passes of samples over the film for any integrator:
+//!   rows in parallel, sample indexing, clamping, bad-sample accounting,
+//!   splats, the time budget, cancellation, progress and checkpoint hooks.
+//! - Each integrator is a variant of [`Integrator`] carrying its settings,
+//!   and a [`run::Run`] variant that holds what it builds for a render and
+//!   its own state between passes (photon maps, `alpha` prediction), which
+//!   checkpoints store as bytes without knowing what they are.
+//! - `lighting.rs`: light sampling, MIS and the emission weights, shared.
+//!
+//! To add an integrator: its tracer in a file (or folder) here, a variant in
+//! [`Integrator`] and in [`run::Run`] (with what it does before and after each
+//! pass), and its parameters read in `load/options.rs` from its own
+//! [`lumis_scene::ParamSpec`] table.
 
 pub mod direct;
+pub mod driver;
 pub mod lighting;
 pub mod path;
 pub mod photon;
-pub mod render;
+pub mod run;
 
-pub use render::{
+pub use driver::{
     render, render_with, BadSample, Progress, RenderHooks, RenderOutcome, RenderSettings,
     RenderState,
 };
-
-use crate::geometry::Ray;
-use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler};
 
 /// Rays traced by kind, counted per thread and merged after each pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -46,63 +53,56 @@ impl RayCounts {
     }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IntegratorKind {
+/// An integrator with its settings.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Integrator {
     /// Unbiased path tracing with NEE and MIS: the reference.
-    Path,
+    Path { max_depth: u32 },
     /// Direct lighting only (through specular chains): a debugging aid.
-    Direct,
+    Direct { max_depth: u32 },
     /// Photon mapping with final gathering and MIS-combined caustics.
-    Photon,
+    Photon(photon::PhotonSettings),
 }
 
-impl IntegratorKind {
+impl Integrator {
+    /// Names as written in scene files (`Integrator "photon"`).
     pub const NAMES: &'static [&'static str] = &["path", "direct", "photon"];
 
-    pub fn from_name(name: &str) -> Option<IntegratorKind> {
+    /// The integrator called `name` with its default settings at `max_depth`
+    /// (pbrt-v4's meaning: scattering events after the camera ray; 0 shows
+    /// emitters only, 1 adds direct lighting).
+    pub fn from_name(name: &str, max_depth: u32) -> Option<Integrator> {
         match name {
-            "path" => Some(IntegratorKind::Path),
-            "direct" => Some(IntegratorKind::Direct),
-            "photon" => Some(IntegratorKind::Photon),
+            "path" => Some(Integrator::Path { max_depth }),
+            "direct" => Some(Integrator::Direct { max_depth }),
+            "photon" => Some(Integrator::Photon(photon::PhotonSettings {
+                max_depth,
+                ..Default::default()
+            })),
             _ => None,
         }
     }
 
     pub fn name(&self) -> &'static str {
         match self {
-            IntegratorKind::Path => "path",
-            IntegratorKind::Direct => "direct",
-            IntegratorKind::Photon => "photon",
+            Integrator::Path { .. } => "path",
+            Integrator::Direct { .. } => "direct",
+            Integrator::Photon(_) => "photon",
         }
     }
-}
 
-#[derive(Clone, Debug)]
-pub struct Integrator {
-    pub kind: IntegratorKind,
-    /// pbrt-v4's meaning: the number of scattering events after the camera
-    /// ray; 0 shows emitters only, 1 adds direct lighting.
-    pub max_depth: u32,
-    /// Settings of the `photon` integrator (unused by the others).
-    pub photon: photon::PhotonSettings,
-}
+    pub fn max_depth(&self) -> u32 {
+        match self {
+            Integrator::Path { max_depth } | Integrator::Direct { max_depth } => *max_depth,
+            Integrator::Photon(s) => s.max_depth,
+        }
+    }
 
-impl Integrator {
-    /// Radiance along a camera ray; `photon` must hold the photon context
-    /// for the `photon` integrator (see `render.rs`).
-    #[inline]
-    pub fn li(
-        &self,
-        scene: &Scene,
-        photon: Option<&photon::gather::PhotonCtx>,
-        ray: Ray,
-        sampler: &mut Sampler,
-        rays: &mut RayCounts,
-    ) -> Rgb {
-        match (self.kind, photon) {
-            (IntegratorKind::Photon, Some(ctx)) => photon::gather::li(ctx, ray, sampler, rays),
-            (IntegratorKind::Direct, _) => direct::li(scene, ray, sampler, self.max_depth, rays),
-            _ => path::li(scene, ray, sampler, self.max_depth, rays),
+    /// The photon settings, for the `photon` integrator.
+    pub fn photon(&self) -> Option<&photon::PhotonSettings> {
+        match self {
+            Integrator::Photon(s) => Some(s),
+            _ => None,
         }
     }
 }

@@ -58,7 +58,7 @@ pub fn li(
         if bs.pdf == 0.0 || bs.f.is_black() {
             break;
         }
-        beta *= bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+        beta *= bs.weight(hit.geom.ns);
         specular_bounce = bs.delta;
         pdf_prev = bs.pdf;
         p_prev = hit.geom.p;

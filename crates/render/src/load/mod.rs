@@ -20,7 +20,6 @@ mod textures_procedural;
 pub use options::RenderOptions;
 
 use crate::scene::{Scene, Shapes};
-use lumis_math::SamplerKind;
 use lumis_scene::{Diagnostic, SceneDesc};
 use std::path::Path;
 
@@ -63,24 +62,15 @@ impl Warnings {
     }
 }
 
-/// Values that win over the scene file's (the command line's).
-#[derive(Clone, Debug, Default)]
-pub struct BuildOverrides {
-    pub resolution: Option<(u32, u32)>,
-    /// Crop window as fractions x0, x1, y0, y1.
-    pub crop: Option<[f32; 4]>,
-    pub spp: Option<u32>,
-    pub integrator: Option<String>,
-    pub max_depth: Option<u32>,
-    pub sampler: Option<SamplerKind>,
-    pub photon: photon::PhotonOverrides,
-}
+/// Values that win over the scene file's (a command line's, a job's),
+/// layered over its parameters by [`options::build_options`].
+pub use lumis_scene::Overrides;
 
 /// The built-in default scene (also shipped as `scenes/default.pbrt`).
 pub const DEFAULT_SCENE: &str = include_str!("../../../../scenes/default.pbrt");
 
 /// Parses and builds a scene file.
-pub fn load_path(path: &Path, ov: &BuildOverrides) -> Result<LoadedScene, Diagnostic> {
+pub fn load_path(path: &Path, ov: &Overrides) -> Result<LoadedScene, Diagnostic> {
     let desc = lumis_scene::load_file(path)?;
     build_scene(&desc, ov)
 }
@@ -90,16 +80,13 @@ pub fn load_text(
     text: &str,
     name: &str,
     base_dir: &Path,
-    ov: &BuildOverrides,
+    ov: &Overrides,
 ) -> Result<LoadedScene, Diagnostic> {
     let desc = lumis_scene::load_str(text, name, base_dir)?;
     build_scene(&desc, ov)
 }
 
-pub fn build_scene(
-    desc: &SceneDesc,
-    overrides: &BuildOverrides,
-) -> Result<LoadedScene, Diagnostic> {
+pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScene, Diagnostic> {
     let mut w = Warnings(desc.warnings.clone());
     if !desc.saw_world_begin {
         return Err(Diagnostic::plain_error("the scene has no `WorldBegin`: nothing to render")

@@ -3,9 +3,9 @@
 use super::Warnings;
 use crate::camera::Camera;
 use crate::film::{Filter, PixelBounds};
-use crate::integrator::{Integrator, IntegratorKind};
+use crate::integrator::{Integrator, RenderSettings};
 use lumis_math::{Mat3, SamplerKind, Transform, Vec2, Vec3};
-use lumis_scene::{Diagnostic, Entity, Loc, SceneDesc};
+use lumis_scene::{Diagnostic, Entity, Loc, Overrides, SceneDesc};
 
 /// Everything the scene file says about how to render it.
 #[derive(Clone, Debug)]
@@ -16,8 +16,6 @@ pub struct RenderOptions {
     pub sampler: SamplerKind,
     pub filter: Filter,
     pub integrator: Integrator,
-    /// The integrator's own parameters, for integrators with more settings.
-    pub integrator_entity: Option<Entity>,
     /// Output file name from the Film, if any.
     pub filename: Option<String>,
     /// Film sensor scale: `iso / 100 * exposuretime` (pbrt-v4's imaging ratio).
@@ -28,6 +26,23 @@ pub struct RenderOptions {
 }
 
 impl RenderOptions {
+    /// Render settings for these options: `spp` samples per pixel (0 with a
+    /// time limit: unbounded), one sample per pass, no clamp, no time limit.
+    pub fn render_settings(&self, spp: u32, seed: u64, threads: usize) -> RenderSettings {
+        RenderSettings {
+            spp,
+            seed,
+            threads,
+            time_limit: None,
+            sampler: self.sampler,
+            filter: self.filter.clone(),
+            crop: self.crop,
+            spp_per_pass: 1,
+            clamp: None,
+            inject_nan: None,
+        }
+    }
+
     /// The film's output of interleaved linear RGB: the imaging ratio, then
     /// the white balance (both linear, so applying them to the finished
     /// image equals pbrt-v4's applying them per sample).
@@ -58,9 +73,11 @@ pub fn check_resolution(res: (u32, u32), loc: &Loc) -> Result<(), Diagnostic> {
     Ok(())
 }
 
+/// The scene's options with `ov` layered over the file's `Film`, `Sampler`,
+/// `PixelFilter` and `Integrator` parameters.
 pub fn build_options(
     desc: &SceneDesc,
-    ov: &super::BuildOverrides,
+    ov: &Overrides,
     w: &mut Warnings,
 ) -> Result<RenderOptions, Diagnostic> {
     let mut resolution = (1280u32, 720u32);
@@ -69,7 +86,7 @@ pub fn build_options(
     let mut imaging_scale = 1.0;
     let mut white_balance = None;
     let mut film_loc = Loc::none();
-    if let Some(f) = &desc.film {
+    if let Some(f) = &ov.apply("Film", desc.film.as_ref(), "rgb")? {
         film_loc = f.loc.clone();
         if !matches!(f.ty.as_str(), "rgb") {
             w.push(Diagnostic::warning(
@@ -136,12 +153,6 @@ pub fn build_options(
             ],
         );
     }
-    if let Some(r) = ov.resolution {
-        resolution = r;
-    }
-    if let Some(c) = ov.crop {
-        crop = c;
-    }
     check_resolution(resolution, &film_loc)?;
     let crop = crop_bounds(resolution, crop);
     if crop.area() == 0 {
@@ -152,7 +163,15 @@ pub fn build_options(
     }
 
     let (mut spp, mut sampler) = (16u32, SamplerKind::Sobol);
-    if let Some(s) = &desc.sampler {
+    if let Some((ty, origin)) = ov.type_of("Sampler") {
+        if !SAMPLERS.contains(&ty) {
+            return Err(
+                Diagnostic::plain_error(format!("unknown sampler `{ty}` ({origin})"))
+                    .with_help(format!("available: {}", SAMPLERS.join(", "))),
+            );
+        }
+    }
+    if let Some(s) = &ov.apply("Sampler", desc.sampler.as_ref(), "zsobol")? {
         spp = s.params.get_int("pixelsamples", 16)?.max(1) as u32;
         s.params.mark_used("seed");
         sampler = match s.ty.as_str() {
@@ -176,27 +195,40 @@ pub fn build_options(
         );
     }
 
-    if let Some(n) = ov.spp {
-        spp = n.max(1);
-    }
-    if let Some(k) = ov.sampler {
-        sampler = k;
-    }
-    let filter = match &desc.filter {
+    let filter = match &ov.apply("PixelFilter", desc.filter.as_ref(), "gaussian")? {
         None => Filter::gaussian(Vec2::splat(1.5), 0.5),
         Some(f) => build_filter(f, w)?,
     };
 
-    let mut integrator = Integrator {
-        kind: IntegratorKind::Path,
-        max_depth: 5,
-        photon: Default::default(),
-    };
-    if let Some(e) = &desc.integrator {
-        integrator.max_depth = e.params.get_int("maxdepth", 5)?.max(0) as u32;
-        match IntegratorKind::from_name(&e.ty) {
-            Some(k) => integrator.kind = k,
-            None if e.ty == "sppm" => {
+    let integrator = build_integrator(desc, ov, w)?;
+    Ok(RenderOptions {
+        resolution,
+        crop,
+        spp,
+        sampler,
+        filter,
+        integrator,
+        filename,
+        imaging_scale,
+        white_balance,
+    })
+}
+
+/// Sampler types a scene file or an override may name without a warning.
+const SAMPLERS: &[&str] = &["independent", "sobol", "zsobol", "paddedsobol"];
+
+/// The file's `Integrator` with the overrides layered on. pbrt-v4's other
+/// integrators are located warnings: `sppm` renders with `photon` (its
+/// scenes are caustic scenes), the rest with `path`.
+fn build_integrator(
+    desc: &SceneDesc,
+    ov: &Overrides,
+    w: &mut Warnings,
+) -> Result<Integrator, Diagnostic> {
+    let mut file = desc.integrator.clone();
+    if let Some(e) = &mut file {
+        if !Integrator::NAMES.contains(&e.ty.as_str()) {
+            let fallback = if e.ty == "sppm" {
                 // The scenes written for SPPM are caustic scenes: render them
                 // with the photon method rather than a path tracer that
                 // cannot see caustics of delta lights.
@@ -205,14 +237,8 @@ pub fn build_options(
                     "integrator `sppm` is not available; using `photon` (photon mapping \
                      with final gathering) with its own defaults",
                 ));
-                integrator.kind = IntegratorKind::Photon;
-                for p in e.params.unused() {
-                    if p.name != "maxdepth" {
-                        p.mark_used();
-                    }
-                }
-            }
-            None => {
+                "photon"
+            } else {
                 let note = match e.ty.as_str() {
                     "volpath" => "volumes are not rendered yet",
                     "bdpt" | "mlt" | "lightpath" => "it is not implemented",
@@ -225,53 +251,49 @@ pub fn build_options(
                         e.ty
                     ),
                 ));
-                e.params.mark_used("regularize");
-                for p in e.params.unused() {
+                "path"
+            };
+            for p in e.params.unused() {
+                if p.name != "maxdepth" {
                     p.mark_used();
                 }
             }
+            e.ty = fallback.into();
         }
         for ignored in ["lightsampler", "regularize"] {
             e.params.mark_used(ignored);
         }
-        if e.ty == "photon" {
-            integrator.photon =
-                super::photon::photon_settings(Some(e), &ov.photon, integrator.max_depth)?;
+    }
+    if let Some((ty, origin)) = ov.type_of("Integrator") {
+        // The file's parameters were written for its own integrator.
+        if let Some(e) = file.as_ref().filter(|e| e.ty != ty) {
+            for p in e.params.unused() {
+                if p.name != "maxdepth" {
+                    p.mark_used();
+                }
+            }
         }
-        let known: &[&str] = if e.ty == "photon" {
-            super::photon::PARAMS
-        } else {
-            &["maxdepth"]
-        };
-        w.unused(&e.params, &format!("integrator \"{}\"", e.ty), known);
+        if !Integrator::NAMES.contains(&ty) {
+            return Err(
+                Diagnostic::plain_error(format!("unknown integrator `{ty}` ({origin})"))
+                    .with_help(format!("available: {}", Integrator::NAMES.join(", "))),
+            );
+        }
     }
-    if let Some(name) = &ov.integrator {
-        integrator.kind = IntegratorKind::from_name(name).ok_or_else(|| {
-            Diagnostic::plain_error(format!("unknown integrator `{name}`"))
-                .with_help(format!("available: {}", IntegratorKind::NAMES.join(", ")))
-        })?;
+    let Some(e) = ov.apply("Integrator", file.as_ref(), "path")? else {
+        return Ok(Integrator::Path { max_depth: 5 });
+    };
+    let max_depth = e.params.get_int("maxdepth", 5)?.max(0) as u32;
+    let integrator = match e.ty.as_str() {
+        "photon" => Integrator::Photon(super::photon::photon_settings(&e, max_depth)?),
+        name => Integrator::from_name(name, max_depth).expect("a checked integrator name"),
+    };
+    let mut known = vec!["maxdepth"];
+    if e.ty == "photon" {
+        known.extend(super::photon::names());
     }
-    if let Some(d) = ov.max_depth {
-        integrator.max_depth = d;
-    }
-    if integrator.kind == IntegratorKind::Photon {
-        let from_file = desc.integrator.as_ref().filter(|e| e.ty == "photon");
-        integrator.photon =
-            super::photon::photon_settings(from_file, &ov.photon, integrator.max_depth)?;
-        super::photon::check(&integrator.photon)?;
-    }
-    Ok(RenderOptions {
-        resolution,
-        crop,
-        spp,
-        sampler,
-        filter,
-        integrator,
-        integrator_entity: desc.integrator.clone(),
-        filename,
-        imaging_scale,
-        white_balance,
-    })
+    w.unused(&e.params, &format!("integrator \"{}\"", e.ty), &known);
+    Ok(integrator)
 }
 
 /// pbrt's crop window (fractions) to pixel bounds.

@@ -3,14 +3,13 @@
 
 pub mod envmap;
 
-use lumis_math::SamplerKind;
 use lumis_render::film::Film;
 use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
-use lumis_render::load::{load_text, BuildOverrides, LoadedScene};
+use lumis_render::load::{load_text, LoadedScene, Overrides};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
-pub fn load(text: &str, ov: &BuildOverrides) -> LoadedScene {
+pub fn load(text: &str, ov: &Overrides) -> LoadedScene {
     load_text(text, "test.pbrt", Path::new("."), ov)
         .unwrap_or_else(|e| panic!("scene failed to load:\n{e}"))
 }
@@ -23,12 +22,11 @@ pub fn load_material(material: &str) -> Result<LoadedScene, String> {
          Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n\
          {material}\nShape \"sphere\"\n"
     );
-    load_text(&text, "s.pbrt", Path::new("."), &BuildOverrides::default())
-        .map_err(|e| e.to_string())
+    load_text(&text, "s.pbrt", Path::new("."), &Overrides::default()).map_err(|e| e.to_string())
 }
 
 pub fn settings(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderSettings {
-    RenderSettings::from_options(&l.options, spp, seed, threads)
+    l.options.render_settings(spp, seed, threads)
 }
 
 pub fn render_loaded(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderOutcome {
@@ -58,11 +56,10 @@ pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
     (mean, (var / n).sqrt())
 }
 
-pub fn independent() -> BuildOverrides {
-    BuildOverrides {
-        sampler: Some(SamplerKind::Independent),
-        ..Default::default()
-    }
+pub fn independent() -> Overrides {
+    let mut o = Overrides::default();
+    o.sampler("independent");
+    o
 }
 
 /// `../shared/scenes/<rel>` if present. Absent: prints a notice and returns

@@ -64,7 +64,7 @@ pub fn li(
             let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
                 return l;
             };
-            beta *= bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+            beta *= bs.weight(hit.geom.ns);
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
@@ -106,7 +106,7 @@ fn delta_lobe_sample(
     if !bs.delta {
         return None;
     }
-    let weight = bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+    let weight = bs.weight(hit.geom.ns);
     Some((weight, spawn_ray(hit.geom.p, hit.geom.ng, bs.wi)))
 }
 
@@ -262,7 +262,7 @@ fn trace_gather(
             let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
                 return acc;
             };
-            let weight = bs.f * (bs.wi.dot(h.geom.ns).abs() / bs.pdf);
+            let weight = bs.weight(h.geom.ns);
             // Roulette with survival = the bounce's transmittance gamma (measured
             // without the radiance scaling of refraction, as the photons' is),
             // so gamma cancels between q_1 and q_2 (seed, A.7).

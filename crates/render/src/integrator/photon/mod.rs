@@ -2,19 +2,22 @@
 //! caustic part is estimated twice (caustic photon map and final-gather rays)
 //! and combined per sample with the seed's weights (`../shared/METHOD.md`).
 //!
-//! Orchestration is in [`PhotonMaps::build`] (photon passes, map building)
-//! and `render.rs` (pixel passes); per-path tracing in `trace.rs` (photons)
-//! and `gather.rs` (camera paths); settings here; weights in `weights.rs`.
+//! Orchestration is in `run.rs` (the photon pass before the camera passes,
+//! `alpha` between them) and [`PhotonMaps::build`]; per-path tracing in
+//! `trace.rs` (photons) and `gather.rs` (camera paths); settings here;
+//! weights in `weights.rs`.
 
 pub mod aim;
 pub mod gather;
 pub mod map;
 pub mod photon;
 pub mod radiance;
+pub mod run;
 pub mod trace;
 pub mod weights;
 
 use crate::scene::Scene;
+use lumis_scene::ParamSpec;
 use map::PhotonMap;
 use radiance::RadiancePhotons;
 use std::sync::atomic::AtomicBool;
@@ -75,6 +78,38 @@ impl Default for PhotonSettings {
     }
 }
 
+const fn spec(
+    ty: &'static str,
+    name: &'static str,
+    words: &'static str,
+    value: &'static str,
+    help: &'static str,
+) -> ParamSpec {
+    ParamSpec {
+        ty,
+        name,
+        words,
+        value,
+        help,
+    }
+}
+
+/// The parameters of `Integrator "photon"` (besides `maxdepth`), declared
+/// once: `load/photon.rs` reads them, front ends offer them.
+pub const PARAMS: &[ParamSpec] = &[
+    spec("integer", "photons", "photons", "N", "photons emitted for the global map"),
+    spec("integer", "causticphotons", "caustic-photons", "N", "photons emitted for the caustic map"),
+    spec("integer", "nearest", "nearest", "M1", "nearest photons per estimate (m_1)"),
+    spec("integer", "gatherrays", "gather-rays", "M2", "final-gather rays per shading point (m_2)"),
+    spec("float", "maxradius", "max-radius", "R", "largest photon search radius in scene units (0: 2% of the scene radius)"),
+    spec("string", "caustics", "caustics", "mis|photons|gather", "caustics from `mis` (the seed's weights), `photons` only or `gather` rays only"),
+    spec("string", "heuristic", "heuristic", "balance|power", "MIS heuristic for the caustic weights"),
+    spec("string", "alpha", "alpha", "footprint|spp|1", "alpha in q_1 at the first camera hit: `footprint` (the default, also `auto`: samples per pixel discounted by the photon neighbourhoods a pixel reads), `spp` (the seed's: samples per pixel) or `1`"),
+    spec("string", "kernel", "kernel", "none|cone", "caustic density-estimation kernel"),
+    spec("bool", "radiancephotons", "radiance-photons", "true|false", "read the global map through precomputed radiance photons"),
+    spec("bool", "aimcaustics", "aim-caustics", "true|false", "emit caustic photons only towards perfectly specular shapes"),
+];
+
 /// Bytes per stored photon plus kd-tree overhead, and per global photon the
 /// normal kept for radiance photons; used for the memory estimate.
 pub const BYTES_PER_PHOTON_ESTIMATE: u64 = 24 + 16 + 12;
@@ -102,12 +137,12 @@ pub fn check_memory(s: &PhotonSettings) -> Result<(), String> {
     if let Some(avail) = available_memory() {
         if need > avail / 10 * 8 {
             let which = if s.caustic_photons > s.global_photons {
-                "caustic-photons (causticphotons)"
+                "causticphotons"
             } else {
                 "photons"
             };
             return Err(format!(
-                "the photon maps would need about {:.1} GiB but only {:.1} GiB of memory is available; lower --{which}",
+                "the photon maps would need about {:.1} GiB but only {:.1} GiB of memory is available; lower `{which}`",
                 need as f64 / (1u64 << 30) as f64,
                 avail as f64 / (1u64 << 30) as f64
             ));

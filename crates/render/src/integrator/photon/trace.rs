@@ -169,7 +169,7 @@ fn trace_one(
         let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Importance) else {
             return;
         };
-        let weight = bs.f * (bs.wi.dot(hit.geom.ns).abs() / bs.pdf);
+        let weight = bs.weight(hit.geom.ns);
         // Russian roulette with survival = the bounce's transmittance, so the
         // photon's power keeps its luminance (the seed's gamma).
         let survive = weight.luminance().min(1.0);
