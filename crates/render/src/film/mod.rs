@@ -7,6 +7,10 @@ pub use filter::Filter;
 
 use lumis_math::Rgb;
 
+/// Most pixels a film (or an image file read) may have: absurd sizes are
+/// refused before anything is allocated.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
 /// Pixel bounds `[x0, x1) x [y0, y1)` in full-film raster coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelBounds {
