@@ -1,6 +1,7 @@
-//! Film: per-pixel running mean and variance (Welford), and pixel filters
-//! applied by importance sampling so each sample touches only its own
-//! pixel (which keeps images independent of thread count).
+//! Film: per-pixel running mean and variance (Welford), pixel bounds, the
+//! film size limit, and pixel filters applied by importance sampling so
+//! each sample touches only its own pixel (which keeps images independent
+//! of thread count).
 
 mod filter;
 pub use filter::Filter;

@@ -1,5 +1,8 @@
 //! Light sources. Every light can be sampled from a reference point (next
-//! event estimation) and can emit rays (photon tracing), and knows its power.
+//! event estimation) and can emit rays (photon tracing), and knows its power;
+//! the [`LightSampler`] picks one in proportion to power. Area lights ask
+//! [`Shapes`] about their primitives (sampling is in `geometry`), so lights
+//! never depend on the scene.
 
 pub mod area;
 pub mod area_texture;
