@@ -233,7 +233,7 @@ pub fn decode_image(bytes: &[u8], format: ImageFormat, name: &str) -> Result<Rgb
 /// 4096 per byte of file beyond the first million (generous for compressed
 /// flat images, small enough that a tiny hostile header cannot claim gigabytes).
 fn pixel_limit(file_len: usize) -> u64 {
-    (crate::load::options::MAX_PIXELS).min((1u64 << 20) + 4096 * file_len as u64)
+    crate::film::MAX_PIXELS.min((1u64 << 20) + 4096 * file_len as u64)
 }
 
 fn read_exr(bytes: &[u8], name: &str) -> Result<RgbImage, ImageError> {

@@ -1,5 +1,11 @@
 //! Rendering: geometry, acceleration, materials, lights, camera, film,
 //! image I/O and integrators.
+//!
+//! The top-level modules are layered, each using only the ones below it
+//! (`tests/layers` checks this and that no two modules import each other):
+//! `geometry`, `bsdf`, `film` at the bottom; then `camera`, `image_io`,
+//! `metrics`; `texture`; `material`; `light`; `accel`; `scene`;
+//! `integrator`; `checkpoint`; and `load`, which builds everything.
 
 pub mod accel;
 pub mod bsdf;

@@ -162,7 +162,7 @@ fn area_emission_directions() {
         let Light::Area(a) = &l.scene.lights[0] else {
             panic!("area light expected")
         };
-        let n = lumis_render::light::shape_sample::sample_area(
+        let n = lumis_render::geometry::sample::sample_area(
             &l.scene.shapes,
             a.prim,
             lumis_math::Vec2::splat(0.3),

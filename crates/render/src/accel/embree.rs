@@ -6,13 +6,13 @@
 //! It mirrors the built-in structure level by level: the world's primitives
 //! and each instanced object become an Embree scene holding one triangle
 //! geometry (the level's triangles, vertices copied in leaf-slot order) and
-//! one user geometry (its spheres and disks, intersected by lumis' own
-//! code); instances are Embree instances of the object scenes. A hit is
+//! one user geometry (its spheres, disks and cylinders, intersected by
+//! lumis' own code); instances are Embree instances of the object scenes. A hit is
 //! mapped back to the level's leaf slot, so surface geometry, materials and
 //! lights come from exactly the same code as with the built-in BVH.
 
-use crate::geometry::{Prim, Ray};
-use crate::scene::{Hit, InstanceHit, LevelHit, PrimBvh, Scene, Shapes};
+use super::{Hit, InstanceHit, Instances, LevelHit, PrimBvh};
+use crate::geometry::{Prim, Ray, Shapes};
 use embree3::{
     Bounds, BufferUsage, Device, Format, Geometry, GeometryKind, IntersectContext,
     IntersectFunctionNArgs, OccludedFunctionNArgs, INVALID_ID,
@@ -36,7 +36,7 @@ pub struct EmbreeAccel {
     _device: Device,
     top: Level,
     objects: Vec<Level>,
-    /// Instance index (in `Scene::instances` order) of each Embree instance id.
+    /// Instance index (in [`Instances::instances`] order) of each Embree instance id.
     instance_of_geom: Vec<u32>,
     _instance_geoms: Vec<Geometry<'static>>,
 }
@@ -75,15 +75,15 @@ fn build_level(device: &Device, shapes: &Arc<Shapes>, level: &PrimBvh) -> Level 
     let mut analytic = Vec::new();
     let mut user_slots = Vec::new();
     for (slot, info) in level.prims.iter().enumerate() {
-        match info.prim {
-            Prim::Triangle { mesh, tri } => {
-                for v in shapes.meshes[mesh as usize].vertices(tri) {
+        match shapes.triangle_vertices(info.prim) {
+            Some(tri) => {
+                for v in tri {
                     verts.push(v.to_array());
                 }
                 tri_slots.push(slot as u32);
             }
-            p => {
-                analytic.push(p);
+            None => {
+                analytic.push(info.prim);
                 user_slots.push(slot as u32);
             }
         }
@@ -190,12 +190,12 @@ impl Level {
 }
 
 impl EmbreeAccel {
-    /// Builds Embree scenes for `scene`'s world and instanced objects.
-    pub fn build(scene: &Scene) -> EmbreeAccel {
+    /// Builds Embree scenes for the world level and the instanced objects
+    /// (the shapes are copied for Embree's callbacks).
+    pub fn build(shapes: &Shapes, world: &PrimBvh, instances: &Instances) -> EmbreeAccel {
         let device = Device::new().expect("embree device");
-        let shapes = Arc::new(scene.shapes.clone());
-        let objects: Vec<Level> = scene
-            .instances
+        let shapes = Arc::new(shapes.clone());
+        let objects: Vec<Level> = instances
             .objects
             .iter()
             .map(|o| {
@@ -204,10 +204,10 @@ impl EmbreeAccel {
                 l
             })
             .collect();
-        let mut top = build_level(&device, &shapes, &scene.world);
+        let mut top = build_level(&device, &shapes, world);
         let mut instance_of_geom = Vec::new();
         let mut instance_geoms = Vec::new();
-        for (i, inst) in scene.instances.instances.iter().enumerate() {
+        for (i, inst) in instances.instances.iter().enumerate() {
             let mut g = device
                 .create_geometry(GeometryKind::INSTANCE)
                 .expect("embree instance");
@@ -231,8 +231,15 @@ impl EmbreeAccel {
         }
     }
 
-    /// Closest hit, as [`Scene::intersect`].
-    pub fn intersect(&self, scene: &Scene, ray: &Ray) -> Option<Hit> {
+    /// Closest hit, as [`super::closest`] on the structures this was built
+    /// from.
+    pub fn intersect(
+        &self,
+        shapes: &Shapes,
+        world: &PrimBvh,
+        instances: &Instances,
+        ray: &Ray,
+    ) -> Option<Hit> {
         let mut ctx = IntersectContext::incoherent();
         let mut rh = embree3::RayHit::from(embree_ray(ray));
         self.top.scene.intersect(&mut ctx, &mut rh);
@@ -245,7 +252,7 @@ impl EmbreeAccel {
         let inst = h.instID[0];
         if inst != INVALID_ID {
             let instance = self.instance_of_geom[inst as usize];
-            let object = scene.instances.instances[instance as usize].object as usize;
+            let object = instances.instances[instance as usize].object as usize;
             let o = &self.objects[object];
             let ih = InstanceHit {
                 hit: LevelHit {
@@ -255,7 +262,7 @@ impl EmbreeAccel {
                 },
                 instance,
             };
-            let (info, geom) = scene.instances.geometry(&scene.shapes, &ih, ray);
+            let (info, geom) = instances.geometry(shapes, &ih, ray);
             return Some(Hit::new(t, geom, info));
         }
         let lh = LevelHit {
@@ -263,11 +270,11 @@ impl EmbreeAccel {
             slot: self.top.slot(&h),
             uv,
         };
-        let geom = scene.world.geometry(&scene.shapes, &lh, ray);
-        Some(Hit::new(t, geom, scene.world.prims[lh.slot as usize]))
+        let geom = world.geometry(shapes, &lh, ray);
+        Some(Hit::new(t, geom, world.prims[lh.slot as usize]))
     }
 
-    /// Whether anything blocks the ray before `ray.tmax`, as [`Scene::occluded`].
+    /// Whether anything blocks the ray before `ray.tmax`, as [`super::occluded`].
     pub fn occluded(&self, ray: &Ray) -> bool {
         let mut ctx = IntersectContext::incoherent();
         let mut r = embree_ray(ray);

@@ -1,8 +1,48 @@
-//! Ray-scene acceleration: a binned-SAH BVH in pure Rust.
+//! Ray queries over [`Shapes`](crate::geometry::Shapes): a binned-SAH BVH in
+//! pure Rust ([`Bvh`]), one level of it over primitives ([`PrimBvh`]),
+//! object instancing ([`Instances`]), the per-primitive records they store
+//! and the hits they report, the combined closest-hit and occlusion queries,
+//! and the optional Embree backend. Built from shapes and primitive lists,
+//! never from a scene: it depends on `geometry` only, and `scene` owns it.
 
 pub mod bench;
 pub mod bvh;
 #[cfg(feature = "embree")]
 pub mod embree;
+mod instance;
+mod level;
 pub mod mem;
+mod prim;
+
 pub use bvh::Bvh;
+pub use instance::{Instance, InstanceHit, InstanceSet, Instances};
+pub use level::{LevelHit, PrimBvh};
+pub use prim::{Hit, PrimInfo, NO_LIGHT};
+
+use crate::geometry::{Ray, Shapes};
+
+/// Closest hit along the ray over the world's primitives and the instances.
+#[inline]
+pub fn closest(shapes: &Shapes, world: &PrimBvh, instances: &Instances, ray: &Ray) -> Option<Hit> {
+    let world_hit = world.closest(shapes, ray);
+    if !instances.is_empty() {
+        let mut r = *ray;
+        if let Some(h) = &world_hit {
+            r.tmax = h.t;
+        }
+        if let Some(ih) = instances.closest(shapes, &r) {
+            let (info, geom) = instances.geometry(shapes, &ih, ray);
+            return Some(Hit::new(ih.hit.t, geom, info));
+        }
+    }
+    let h = world_hit?;
+    let geom = world.geometry(shapes, &h, ray);
+    Some(Hit::new(h.t, geom, world.prims[h.slot as usize]))
+}
+
+/// Whether anything among the world's primitives and the instances blocks
+/// the ray before `ray.tmax`.
+#[inline]
+pub fn occluded(shapes: &Shapes, world: &PrimBvh, instances: &Instances, ray: &Ray) -> bool {
+    world.any(shapes, ray) || (!instances.is_empty() && instances.any(shapes, ray))
+}

@@ -1,11 +1,16 @@
-//! Film: per-pixel running mean and variance (Welford), and pixel filters
-//! applied by importance sampling so each sample touches only its own
-//! pixel (which keeps images independent of thread count).
+//! Film: per-pixel running mean and variance (Welford), pixel bounds, the
+//! film size limit, and pixel filters applied by importance sampling so
+//! each sample touches only its own pixel (which keeps images independent
+//! of thread count).
 
 mod filter;
 pub use filter::Filter;
 
 use lumis_math::Rgb;
+
+/// Most pixels a film (or an image file read) may have: absurd sizes are
+/// refused before anything is allocated.
+pub const MAX_PIXELS: u64 = 1 << 28;
 
 /// Pixel bounds `[x0, x1) x [y0, y1)` in full-film raster coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -62,3 +62,20 @@ impl Aabb {
         (c, (self.max - c).length())
     }
 }
+
+/// World box of an object-space box (its eight corners transformed).
+pub fn transform_box(xf: &lumis_math::Transform, b: &Aabb) -> Aabb {
+    if b.is_empty() {
+        return Aabb::EMPTY;
+    }
+    let mut out = Aabb::EMPTY;
+    for k in 0..8 {
+        let c = Vec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        out.grow(xf.point(c));
+    }
+    out
+}

@@ -41,7 +41,7 @@ impl Cylinder {
             min: Vec3::new(-r, -r, self.zmin),
             max: Vec3::new(r, r, self.zmax),
         };
-        crate::scene::transform_box(&self.object_to_world, &b)
+        super::aabb::transform_box(&self.object_to_world, &b)
     }
 
     /// World-space area (similarity transform assumed, as for spheres and disks).

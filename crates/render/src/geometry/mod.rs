@@ -1,19 +1,27 @@
-//! Rays, bounding boxes and shapes (triangle meshes, spheres, disks).
+//! Rays, bounding boxes and shapes (triangle meshes with their subdivision,
+//! spheres, disks, cylinders): each shape's intersection, surface geometry
+//! and area, [`Shapes`] holding all of a scene's shapes with the dispatch
+//! on [`Prim`], and sampling points on a primitive. The bottom layer of the
+//! renderer: it depends on `lumis_math` only.
 
 pub mod aabb;
 pub mod cylinder;
 pub mod disk;
 pub mod mesh;
 pub mod ray;
+pub mod sample;
+pub mod shapes;
 pub mod sphere;
+pub mod square_map;
 pub mod subdiv;
 pub mod triangle;
 
-pub use aabb::Aabb;
+pub use aabb::{transform_box, Aabb};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::TriangleMesh;
 pub use ray::{offset_ray_origin, Ray};
+pub use shapes::Shapes;
 pub use sphere::Sphere;
 
 use lumis_math::{Vec2, Vec3};
@@ -29,6 +37,19 @@ pub enum Prim {
     Sphere(u32),
     Disk(u32),
     Cylinder(u32),
+}
+
+impl Prim {
+    /// Which shape the primitive belongs to: its kind (0 triangle mesh,
+    /// 1 sphere, 2 disk, 3 cylinder) and the index of the mesh or quadric.
+    pub fn shape(self) -> (u8, u32) {
+        match self {
+            Prim::Triangle { mesh, .. } => (0, mesh),
+            Prim::Sphere(i) => (1, i),
+            Prim::Disk(i) => (2, i),
+            Prim::Cylinder(i) => (3, i),
+        }
+    }
 }
 
 /// What an intersection routine reports before shading data is computed.

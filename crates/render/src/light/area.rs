@@ -1,12 +1,11 @@
 //! Diffuse area light on one primitive (pbrt's "diffuse" AreaLightSource),
 //! emitting a constant radiance or an image (`area_texture.rs`).
 
-use super::area_param::{square_to_surface, surface_to_square};
 use super::area_texture::TexturedEmission;
-use super::shape_sample::{pdf_solid_angle, sample_area, sample_solid_angle};
 use super::{LeSample, LiSample};
-use crate::geometry::{offset_ray_origin, Prim, Ray};
-use crate::scene::Shapes;
+use crate::geometry::sample::{pdf_solid_angle, sample_area, sample_solid_angle};
+use crate::geometry::square_map::{square_to_surface, surface_to_square};
+use crate::geometry::{offset_ray_origin, Prim, Ray, Shapes};
 use lumis_math::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use lumis_math::{Frame, Rgb, Vec2, Vec3, PI};
 

@@ -2,19 +2,19 @@
 //! radiance at a surface point is the image bilinearly interpolated at the
 //! point's `(u, 1 - v)` (clamped at the borders), times the light's `scale`.
 //!
-//! Each primitive of the light carries a piecewise-constant density over the
-//! unit square of its area-preserving map (`area_param.rs`), proportional to
-//! the luminance of the emitted radiance: points (for light sampling and for
-//! photons) are chosen by importance, so photons leave with nearly equal
-//! power (exactly `L / pdf`, hence unbiased; equal up to the variation of
-//! the bilinear image inside one cell). The same cell averages give the
-//! primitive's mean radiance, so the light's power is the integral of the
-//! image over the surface (a midpoint rule with at least six points per
-//! texel along each direction, and 8x8 per cell), not the image's mean.
+//! Each primitive of the light carries a piecewise-constant density over
+//! the unit square of its area-preserving map (`geometry/square_map.rs`),
+//! proportional to the luminance of the emitted radiance: points (for light
+//! sampling and for photons) are chosen by importance, so photons leave
+//! with nearly equal power (exactly `L / pdf`, hence unbiased; equal up to
+//! the variation of the bilinear image inside one cell). The same cell
+//! averages give the primitive's mean radiance, so the light's power is the
+//! integral of the image over the surface (a midpoint rule with at least
+//! six points per texel along each direction, and 8x8 per cell), not the
+//! image's mean.
 
-use super::area_param::square_to_surface;
-use crate::geometry::Prim;
-use crate::scene::Shapes;
+use crate::geometry::square_map::square_to_surface;
+use crate::geometry::{Prim, Shapes};
 use crate::texture::mipmap::{Level, WrapMode};
 use lumis_math::sampling::PiecewiseConstant2D;
 use lumis_math::{Rgb, Vec2};
@@ -160,22 +160,7 @@ impl TexturedEmission {
 /// quadrics) times the image's resolution.
 pub fn texel_coverage(image: &EmissionImage, shapes: &Shapes, prim: Prim) -> f32 {
     let (w, h) = image.size();
-    uv_area(shapes, prim) * w as f32 * h as f32
-}
-
-fn uv_area(shapes: &Shapes, prim: Prim) -> f32 {
-    match prim {
-        Prim::Triangle { mesh, tri } => {
-            let m = &shapes.meshes[mesh as usize];
-            let Some(uv) = &m.uvs else {
-                return 0.5;
-            };
-            let i = 3 * tri as usize;
-            let [a, b, c] = [0, 1, 2].map(|k| uv[m.indices[i + k] as usize]);
-            0.5 * (b - a).perp_dot(c - a).abs()
-        }
-        Prim::Sphere(_) | Prim::Disk(_) | Prim::Cylinder(_) => 1.0,
-    }
+    shapes.uv_area(prim) * w as f32 * h as f32
 }
 
 #[cfg(test)]

@@ -1,8 +1,10 @@
 //! Light sources. Every light can be sampled from a reference point (next
-//! event estimation) and can emit rays (photon tracing), and knows its power.
+//! event estimation) and can emit rays (photon tracing), and knows its power;
+//! the [`LightSampler`] picks one in proportion to power. Area lights ask
+//! [`Shapes`] about their primitives (sampling is in `geometry`), so lights
+//! never depend on the scene.
 
 pub mod area;
-pub mod area_param;
 pub mod area_texture;
 pub mod distant;
 pub mod goniometric;
@@ -10,7 +12,6 @@ pub mod image_infinite;
 pub mod infinite;
 pub mod point;
 pub mod sampler;
-pub mod shape_sample;
 pub mod spot;
 
 pub use area::{AreaLight, LightPoint};
@@ -23,8 +24,8 @@ pub use point::PointLight;
 pub use sampler::LightSampler;
 pub use spot::SpotLight;
 
+use crate::geometry::Shapes;
 use crate::geometry::{Aabb, Ray};
-use crate::scene::Shapes;
 use lumis_math::{Rgb, Vec2, Vec3};
 
 /// A sample of incident light at a reference point.

@@ -1,7 +1,7 @@
 //! Chooses a light in proportion to its power (luminance).
 
 use super::Light;
-use crate::scene::Shapes;
+use crate::geometry::Shapes;
 
 #[derive(Clone, Debug, Default)]
 pub struct LightSampler {

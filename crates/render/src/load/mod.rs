@@ -1,6 +1,10 @@
 //! Second stage of input: the plain [`SceneDesc`] from `lumis-scene` becomes
 //! checked runtime objects. Unknown parameters become warnings with their
 //! locations; unsupported types are warnings too, never silently ignored.
+//!
+//! The top layer of the crate: it builds every runtime object, so it may
+//! use any module; the other modules do not import it (one known exception
+//! is listed in `tests/layers`).
 
 mod area_lights;
 mod envmap;

@@ -57,8 +57,7 @@ impl RenderOptions {
     }
 }
 
-/// Refuses absurd film sizes before anything is allocated.
-pub const MAX_PIXELS: u64 = 1 << 28;
+pub use crate::film::MAX_PIXELS;
 
 pub fn check_resolution(res: (u32, u32), loc: &Loc) -> Result<(), Diagnostic> {
     if res.0 == 0 || res.1 == 0 || res.0 as u64 * res.1 as u64 > MAX_PIXELS {

@@ -1,114 +1,22 @@
-//! The runtime scene: shapes in the scene's vectors, a BVH over all
-//! primitives, materials, lights and the camera.
+//! The runtime scene: the shapes, the acceleration structures over their
+//! primitives (world and instances), materials with their textures, lights
+//! with their sampler, and the camera; and the queries integrators use on
+//! it (closest hit, occlusion, the BSDF at a hit). It only assembles the
+//! layers below; the types it is built from are re-exported here.
 
-mod instance;
-mod level;
+pub use crate::accel::{Hit, Instance, InstanceSet, PrimInfo, NO_LIGHT};
+pub use crate::geometry::Shapes;
 
-pub use instance::{transform_box, Instance, InstanceHit, InstanceSet, Instances};
-pub use level::{LevelHit, PrimBvh};
+use crate::accel::{Instances, PrimBvh};
 
 use crate::bsdf::SurfaceBsdf;
 use crate::camera::Camera;
-use crate::geometry::{Aabb, Cylinder, Disk, Prim, Ray, Sphere, SurfaceGeom, TriangleMesh};
+use crate::geometry::{Aabb, Ray};
 use crate::light::{Light, LightSampler};
 use crate::material::Material;
 use crate::texture::Textures;
 use lumis_math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
-
-/// Big shape data, referenced by `u32` ids.
-#[derive(Clone, Debug, Default)]
-pub struct Shapes {
-    pub meshes: Vec<TriangleMesh>,
-    pub spheres: Vec<Sphere>,
-    pub disks: Vec<Disk>,
-    pub cylinders: Vec<Cylinder>,
-}
-
-impl Shapes {
-    pub fn bounds(&self, p: Prim) -> Aabb {
-        match p {
-            Prim::Triangle { mesh, tri } => self.meshes[mesh as usize].bounds(tri),
-            Prim::Sphere(i) => self.spheres[i as usize].bounds(),
-            Prim::Disk(i) => self.disks[i as usize].bounds(),
-            Prim::Cylinder(i) => self.cylinders[i as usize].bounds(),
-        }
-    }
-
-    /// Hit distance in (0, tmax) on an analytic shape (`None` for triangles,
-    /// which the acceleration structures test themselves).
-    #[inline]
-    pub fn intersect_analytic(&self, p: Prim, r: &Ray, tmax: f32) -> Option<f32> {
-        match p {
-            Prim::Sphere(i) => self.spheres[i as usize].intersect(r, tmax),
-            Prim::Disk(i) => self.disks[i as usize].intersect(r, tmax),
-            Prim::Cylinder(i) => self.cylinders[i as usize].intersect(r, tmax),
-            Prim::Triangle { .. } => None,
-        }
-    }
-
-    /// Bytes of vertex, index, normal and uv data and the analytic shapes.
-    pub fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        let mesh = |m: &TriangleMesh| {
-            m.positions.len() * size_of::<lumis_math::Vec3>()
-                + m.normals
-                    .as_ref()
-                    .map_or(0, |n| n.len() * size_of::<lumis_math::Vec3>())
-                + m.uvs
-                    .as_ref()
-                    .map_or(0, |u| u.len() * size_of::<lumis_math::Vec2>())
-                + m.indices.len() * 4
-        };
-        self.meshes.iter().map(mesh).sum::<usize>()
-            + self.spheres.len() * size_of::<Sphere>()
-            + self.disks.len() * size_of::<Disk>()
-            + self.cylinders.len() * size_of::<Cylinder>()
-    }
-
-    pub fn area(&self, p: Prim) -> f32 {
-        match p {
-            Prim::Triangle { mesh, tri } => self.meshes[mesh as usize].area(tri),
-            Prim::Sphere(i) => self.spheres[i as usize].area(),
-            Prim::Disk(i) => self.disks[i as usize].area(),
-            Prim::Cylinder(i) => self.cylinders[i as usize].area(),
-        }
-    }
-}
-
-/// A primitive with what it is made of.
-#[derive(Clone, Copy, Debug)]
-pub struct PrimInfo {
-    pub prim: Prim,
-    pub material: u32,
-    /// Index of its area light, or `NO_LIGHT`.
-    pub light: u32,
-}
-
-pub const NO_LIGHT: u32 = u32::MAX;
-
-/// A surface hit with everything shading needs.
-#[derive(Clone, Copy, Debug)]
-pub struct Hit {
-    pub t: f32,
-    pub geom: SurfaceGeom,
-    pub material: u32,
-    pub light: Option<u32>,
-    pub prim: Prim,
-}
-
-impl Hit {
-    #[inline]
-    pub fn new(t: f32, geom: SurfaceGeom, info: PrimInfo) -> Hit {
-        Hit {
-            t,
-            geom,
-            material: info.material,
-            light: (info.light != NO_LIGHT).then_some(info.light),
-            prim: info.prim,
-        }
-    }
-}
 
 #[derive(Default)]
 pub struct RayCounters {
@@ -204,7 +112,9 @@ impl Scene {
     /// Traces rays with Embree from now on (`on`), or with the built-in BVH.
     #[cfg(feature = "embree")]
     pub fn use_embree(&mut self, on: bool) {
-        self.embree = on.then(|| crate::accel::embree::EmbreeAccel::build(self));
+        self.embree = on.then(|| {
+            crate::accel::embree::EmbreeAccel::build(&self.shapes, &self.world, &self.instances)
+        });
     }
 
     /// Closest intersection along the ray, or `None`.
@@ -212,7 +122,7 @@ impl Scene {
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         #[cfg(feature = "embree")]
         if let Some(e) = &self.embree {
-            return e.intersect(self, ray);
+            return e.intersect(&self.shapes, &self.world, &self.instances, ray);
         }
         self.intersect_bvh(ray)
     }
@@ -229,26 +139,12 @@ impl Scene {
 
     /// [`Scene::intersect`] with the built-in BVH whatever the backend.
     pub fn intersect_bvh(&self, ray: &Ray) -> Option<Hit> {
-        let world_hit = self.world.closest(&self.shapes, ray);
-        if !self.instances.is_empty() {
-            let mut r = *ray;
-            if let Some(h) = &world_hit {
-                r.tmax = h.t;
-            }
-            if let Some(ih) = self.instances.closest(&self.shapes, &r) {
-                let (info, geom) = self.instances.geometry(&self.shapes, &ih, ray);
-                return Some(Hit::new(ih.hit.t, geom, info));
-            }
-        }
-        let h = world_hit?;
-        let geom = self.world.geometry(&self.shapes, &h, ray);
-        Some(Hit::new(h.t, geom, self.world.prims[h.slot as usize]))
+        crate::accel::closest(&self.shapes, &self.world, &self.instances, ray)
     }
 
     /// [`Scene::occluded`] with the built-in BVH whatever the backend.
     pub fn occluded_bvh(&self, ray: &Ray) -> bool {
-        self.world.any(&self.shapes, ray)
-            || (!self.instances.is_empty() && self.instances.any(&self.shapes, ray))
+        crate::accel::occluded(&self.shapes, &self.world, &self.instances, ray)
     }
 
     #[inline]

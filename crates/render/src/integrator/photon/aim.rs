@@ -7,9 +7,9 @@
 //! q_1 uses each photon's own flux (`N L_e cos DeltaA / (Phi alpha)` with
 //! `Phi / N` replaced by the flux the photon carries).
 
-use crate::geometry::{offset_ray_origin, Aabb, Prim, Ray};
+use crate::geometry::{offset_ray_origin, transform_box, Aabb, Ray};
 use crate::light::Light;
-use crate::scene::{transform_box, Scene};
+use crate::scene::Scene;
 use lumis_math::sampling::{
     square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf, UNIFORM_SPHERE_PDF,
 };
@@ -32,13 +32,7 @@ impl Targets {
                 if !scene.materials[p.material as usize].is_specular() {
                     continue;
                 }
-                let key = match p.prim {
-                    Prim::Triangle { mesh, .. } => (0, mesh),
-                    Prim::Sphere(i) => (1, i),
-                    Prim::Disk(i) => (2, i),
-                    Prim::Cylinder(i) => (3, i),
-                };
-                let b = boxes.entry(key).or_insert(Aabb::EMPTY);
+                let b = boxes.entry(p.prim.shape()).or_insert(Aabb::EMPTY);
                 *b = b.union(&scene.shapes.bounds(p.prim));
             }
             boxes.into_values().collect::<Vec<Aabb>>()

@@ -1,8 +1,7 @@
 //! Sampling points on shapes, by area and by solid angle from a reference point.
 
-use crate::geometry::triangle::triangle_geometry;
-use crate::geometry::Prim;
-use crate::scene::Shapes;
+use super::triangle::triangle_geometry;
+use super::{Prim, Shapes};
 use lumis_math::sampling::{square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf};
 use lumis_math::{safe_sqrt, Frame, Vec2, Vec3};
 

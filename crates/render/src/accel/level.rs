@@ -2,10 +2,9 @@
 //! primitives (and the triangles' vertices) stored in leaf order. The world's
 //! own primitives form one level; each instanced object forms another.
 
-use super::{PrimInfo, Shapes};
-use crate::accel::Bvh;
-use crate::geometry::triangle::{intersect_triangle, triangle_geometry, RayShear};
-use crate::geometry::{Aabb, Prim, Ray, SurfaceGeom};
+use super::{Bvh, PrimInfo};
+use crate::geometry::triangle::{intersect_triangle, RayShear};
+use crate::geometry::{Aabb, Ray, Shapes, SurfaceGeom};
 use lumis_math::{Vec2, Vec3};
 
 /// Tag in `PrimBvh::tri_verts` of a primitive that is not a triangle.
@@ -35,11 +34,15 @@ impl PrimBvh {
         let boxes: Vec<Aabb> = prims.iter().map(|p| shapes.bounds(p.prim)).collect();
         let mut bvh = Bvh::build(&boxes);
         let prims: Vec<PrimInfo> = bvh.order.iter().map(|&i| prims[i as usize]).collect();
-        let mut tri_verts = crate::accel::mem::huge_vec(prims.len());
-        tri_verts.extend(prims.iter().map(|p| match p.prim {
-            Prim::Triangle { mesh, tri } => (shapes.meshes[mesh as usize].vertices(tri), 0),
-            _ => ([Vec3::ZERO; 3], ANALYTIC),
-        }));
+        let mut tri_verts = super::mem::huge_vec(prims.len());
+        tri_verts.extend(
+            prims
+                .iter()
+                .map(|p| match shapes.triangle_vertices(p.prim) {
+                    Some(v) => (v, 0),
+                    None => ([Vec3::ZERO; 3], ANALYTIC),
+                }),
+        );
         bvh.order = Vec::new();
         PrimBvh {
             prims,
@@ -67,7 +70,7 @@ impl PrimBvh {
     #[inline(always)]
     fn prefetch(&self, start: u32, count: u32) {
         if let Some(t) = self.tri_verts.get(start as usize..(start + count) as usize) {
-            crate::accel::mem::prefetch(t);
+            super::mem::prefetch(t);
         }
     }
 
@@ -116,13 +119,6 @@ impl PrimBvh {
 
     /// Surface geometry of a hit, in this level's space.
     pub fn geometry(&self, shapes: &Shapes, h: &LevelHit, ray: &Ray) -> SurfaceGeom {
-        match self.prims[h.slot as usize].prim {
-            Prim::Triangle { mesh, tri } => {
-                triangle_geometry(&shapes.meshes[mesh as usize], tri, h.uv.x, h.uv.y)
-            }
-            Prim::Sphere(i) => shapes.spheres[i as usize].geometry_at(ray.at(h.t)),
-            Prim::Disk(i) => shapes.disks[i as usize].geometry_at(ray.at(h.t)),
-            Prim::Cylinder(i) => shapes.cylinders[i as usize].geometry_at(ray.at(h.t)),
-        }
+        shapes.geometry(self.prims[h.slot as usize].prim, ray, h.t, h.uv)
     }
 }

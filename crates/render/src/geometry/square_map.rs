@@ -1,6 +1,6 @@
 //! An area-preserving map from the unit square onto each primitive, and its
 //! inverse: textured emitters sample a piecewise-constant density over the
-//! square (`area_texture.rs`), so a point's area density is the square's
+//! square (`light/area_texture.rs`), so a point's area density is the square's
 //! density divided by the primitive's area, and a hit point's density is
 //! found by mapping it back.
 //!
@@ -9,9 +9,8 @@
 //! - spheres and cylinders: `z` and `phi` linear in the square (Archimedes);
 //! - disks: `r^2` and `phi` linear (polar, not the concentric map).
 
-use crate::geometry::triangle::triangle_geometry;
-use crate::geometry::{phi_of, Prim, SurfaceGeom};
-use crate::scene::Shapes;
+use super::triangle::triangle_geometry;
+use super::{phi_of, Prim, Shapes, SurfaceGeom};
 use lumis_math::sampling::square_to_uniform_triangle;
 use lumis_math::{Vec2, Vec3, PI};
 

@@ -5,10 +5,9 @@
 //! in world space.
 
 use super::level::{LevelHit, PrimBvh};
-use super::{PrimInfo, Shapes};
-use crate::accel::Bvh;
-use crate::geometry::{Aabb, Ray, SurfaceGeom};
-use lumis_math::{Transform, Vec3};
+use super::{Bvh, PrimInfo};
+use crate::geometry::{transform_box, Aabb, Ray, Shapes, SurfaceGeom};
+use lumis_math::Transform;
 
 /// One placement of an object.
 #[derive(Clone, Copy, Debug)]
@@ -133,21 +132,4 @@ impl Instances {
         };
         (obj.prims[h.hit.slot as usize], geom)
     }
-}
-
-/// World box of an object-space box (its eight corners transformed).
-pub fn transform_box(xf: &Transform, b: &Aabb) -> Aabb {
-    if b.is_empty() {
-        return Aabb::EMPTY;
-    }
-    let mut out = Aabb::EMPTY;
-    for k in 0..8 {
-        let c = Vec3::new(
-            if k & 1 == 0 { b.min.x } else { b.max.x },
-            if k & 2 == 0 { b.min.y } else { b.max.y },
-            if k & 4 == 0 { b.min.z } else { b.max.z },
-        );
-        out.grow(xf.point(c));
-    }
-    out
 }
