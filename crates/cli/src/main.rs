@@ -4,6 +4,7 @@ mod args;
 mod bench;
 mod display;
 mod heatmap;
+mod interrupt;
 mod job;
 mod progress;
 mod resume;

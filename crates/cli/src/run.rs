@@ -2,32 +2,14 @@
 //! session, printing progress and the summary; the others are thin too.
 
 use crate::args::{Cli, Command, RenderArgs};
+use crate::interrupt::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
 use crate::progress::Reporter;
 use anyhow::Result;
 use lumis_render::integrator::{BadSample, RenderHooks, RenderState};
 use lumis_render::session::{load_checkpoint, Phases, Session};
 use std::path::Path;
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
-
-/// Exit status of a render stopped by SIGINT/SIGTERM after writing its image (128 + SIGINT).
-pub const EXIT_INTERRUPTED: u8 = 130;
-
-/// Set by the first SIGINT/SIGTERM: no further passes start.
-pub(crate) static CANCEL: AtomicBool = AtomicBool::new(false);
-
-/// First Ctrl-C (or SIGTERM): finish the current pass, write the image, exit
-/// with [`EXIT_INTERRUPTED`]. Second: exit at once.
-pub(crate) fn install_interrupt_handler() {
-    let _ = ctrlc::set_handler(|| {
-        if CANCEL.swap(true, Ordering::SeqCst) {
-            eprintln!("\nlumis: interrupted twice: exiting without writing");
-            std::process::exit(EXIT_INTERRUPTED as i32);
-        }
-        eprintln!("\nlumis: interrupt: finishing this pass, then writing the image (Ctrl-C again to quit now)");
-    });
-}
 
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {

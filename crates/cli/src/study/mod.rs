@@ -9,7 +9,7 @@ mod report;
 mod store;
 
 use crate::args::{Cli, Command, StudyArgs};
-use crate::run::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
+use crate::interrupt::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
 use anyhow::{anyhow, Result};
 use clap::Parser;
 use config::Config;
