@@ -3,7 +3,6 @@
 mod args;
 mod bench;
 mod display;
-mod heatmap;
 mod interrupt;
 mod job;
 mod progress;

@@ -45,7 +45,9 @@ fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
     let q = m.ratio();
     println!("ratio    {:.4} {:.4} {:.4}", q[0], q[1], q[2]);
     if let Some(path) = &a.heatmap {
-        let (lo, hi) = crate::heatmap::write_heatmap(path, &t, &r, kind, a.heatmap_range)?;
+        let (lo, hi) =
+            lumis_render::metrics::heatmap::write_heatmap(path, &t, &r, kind, a.heatmap_range)
+                .map_err(anyhow::Error::msg)?;
         println!(
             "heatmap  {} ({} error per pixel, log scale {lo:.2e} .. {hi:.2e})",
             path.display(),

@@ -243,7 +243,7 @@ fn photon_budget_beyond_memory_is_refused_naming_the_parameter() {
             "--integrator",
             "photon",
             "--caustic-photons",
-            "100000000000",
+            "2000000000",
             "--spp",
             "1",
             "-o",

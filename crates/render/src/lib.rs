@@ -21,4 +21,5 @@ pub mod material;
 pub mod metrics;
 pub mod scene;
 pub mod session;
+pub mod study;
 pub mod texture;

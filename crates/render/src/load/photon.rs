@@ -83,7 +83,13 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
             format!("max radius must be >= 0, found {}", s.max_radius),
         ));
     }
-    check_memory(&s).map_err(|m| Diagnostic::error(&e.loc, m))?;
+    check_memory(&s).map_err(|m| {
+        let which = match s.caustic_photons > s.global_photons {
+            true => "causticphotons",
+            false => "photons",
+        };
+        Diagnostic::error(&p.loc_of(which).unwrap_or(e.loc.clone()), m)
+    })?;
     Ok(s)
 }
 

@@ -26,6 +26,7 @@ const RENDER_LAYERS: &[&[&str]] = &[
     &["checkpoint"],
     &["load"],
     &["session"],
+    &["study"],
 ];
 
 /// Known edges both checks skip, as (crate folder, from, to, file that

@@ -1,28 +1,52 @@
-//! `lumis study CONFIG.toml`: renders a matrix of scenes x settings x budgets
-//! x seeds in-process, compares each run with its scene's reference, and
-//! writes images, heatmaps, metrics and a self-contained HTML report.
-//! Each finished run is recorded atomically; a rerun skips finished runs.
+//! Equal-time studies: a matrix of scenes x settings x budgets x seeds, each
+//! run a [`RenderJob`] rendered in-process by a [`Session`], compared with
+//! its scene's reference; images, heatmaps, metrics and a self-contained
+//! HTML report are written. Each finished run is recorded atomically; a
+//! rerun skips finished runs. Front ends (`lumis study`) load a [`Config`]
+//! and say how a run's flags become a job.
 
-mod config;
+pub mod config;
+pub mod error;
 mod plot;
 mod report;
-mod store;
+pub mod store;
 
-use crate::args::{Cli, Command, StudyArgs};
-use crate::interrupt::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
-use anyhow::{anyhow, Result};
-use clap::Parser;
-use config::Config;
-use lumis_render::image_io::{read_image, write_image, RgbImage};
-use lumis_render::integrator::RenderHooks;
-use lumis_render::load::options::crop_bounds;
-use lumis_render::metrics::{compare, PixelError};
-use lumis_render::session::Session;
+pub use config::Config;
+pub use error::{Result, StudyError};
+
+use crate::image_io::{read_image, write_image, RgbImage};
+use crate::integrator::RenderHooks;
+use crate::load::options::crop_bounds;
+use crate::metrics::heatmap::write_heatmap;
+use crate::metrics::{compare, PixelError};
+use crate::session::{RenderJob, Session};
+use error::Context;
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 use store::{RunResult, Store};
+
+/// How a study runs: where, how verbosely, and how a run's flags (its
+/// setting's and scene's, with the budget, seed and threads the study
+/// sets) become a job.
+pub struct StudyRun<'a> {
+    pub out: PathBuf,
+    /// The command that started the study, for the report.
+    pub command: String,
+    pub job_for: &'a dyn Fn(&[String]) -> std::result::Result<RenderJob, String>,
+    /// Set (e.g. by SIGINT) to stop after the current run.
+    pub cancel: &'a AtomicBool,
+    /// Progress lines and the scenes' warnings.
+    pub log: &'a dyn Fn(&str),
+}
+
+/// What a study did.
+pub struct StudyOutcome {
+    pub finished: usize,
+    pub planned: usize,
+    pub interrupted: bool,
+    pub report: PathBuf,
+}
 
 /// Exposure (stops) that maps the reference's 98th-percentile luminance to 1,
 /// rounded to half stops.
@@ -92,23 +116,27 @@ fn rel(out: &Path, p: &Path) -> String {
         .replace('\\', "/")
 }
 
-pub fn run(a: StudyArgs) -> Result<ExitCode> {
-    let c = Config::load(&a.config)?;
-    let out = a.out.clone().unwrap_or_else(|| {
-        let stem = a.config.file_stem().unwrap_or_default().to_string_lossy();
-        a.config
-            .parent()
-            .unwrap_or(Path::new("."))
-            .join(format!("{stem}-report"))
-    });
+/// The report folder a config's study writes to by default:
+/// `<config stem>-report` beside it.
+pub fn default_out(config: &Path) -> PathBuf {
+    let stem = config.file_stem().unwrap_or_default().to_string_lossy();
+    config
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join(format!("{stem}-report"))
+}
+
+/// Runs every unfinished run of `c` and writes the report.
+pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
+    let out = a.out.clone();
     let store = Store::new(&out)?;
     // References: read, checked, tone-mapped once; every run of a scene uses its exposure.
     let mut refs = Vec::new();
     let mut infos = Vec::new();
     for s in &c.scenes {
         let r = read_image(&s.reference)
-            .map_err(|e| anyhow!("scene `{}`: reading its reference: {e}", s.name))?;
-        compare(&r, &r, None).map_err(|e| anyhow!("scene `{}`: reference {e}", s.name))?;
+            .with_context(|| format!("scene `{}`: reading its reference", s.name))?;
+        compare(&r, &r, None).with_context(|| format!("scene `{}`: reference", s.name))?;
         let exposure = s.exposure.unwrap_or_else(|| auto_exposure(&r));
         std::fs::create_dir_all(out.join(&s.name))?;
         let png = out.join(&s.name).join("reference.png");
@@ -121,7 +149,6 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
         });
         refs.push(r);
     }
-    install_interrupt_handler();
     let ctx_start = (loadavg(), utc_now());
     let runs = c.runs();
     let mut results: Vec<RunResult> = Vec::new();
@@ -133,28 +160,18 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
         let args = c.render_args(run);
         let tag = format!("[{}/{}] {id}", k + 1, runs.len());
         if let Some(r) = store.finished(&id, &args) {
-            if !a.quiet {
-                eprintln!("{tag}: finished before, skipped");
-            }
+            (a.log)(&format!("{tag}: finished before, skipped"));
             results.push(r);
             planned[k].1 = true;
             continue;
         }
-        if CANCEL.load(Ordering::SeqCst) {
+        if a.cancel.load(Ordering::SeqCst) {
             interrupted = true;
             break;
         }
         let t0 = Instant::now();
-        let r = render_run(
-            &c,
-            run,
-            &id,
-            &args,
-            &out,
-            &refs[run.scene],
-            &infos[run.scene],
-        )
-        .map_err(|e| anyhow!("run {id} (lumis render {}): {e:#}", args.join(" ")))?;
+        let r = render_run(c, a, run, &id, &args, &refs[run.scene], &infos[run.scene])
+            .with_context(|| format!("run {id} (lumis render {})", args.join(" ")))?;
         let Some(r) = r else {
             interrupted = true;
             break;
@@ -165,14 +182,14 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
         done_here += 1;
         secs_here += t0.elapsed().as_secs_f64();
         let left = planned.iter().filter(|p| !p.1).count();
-        eprintln!(
+        (a.log)(&format!(
             "{tag}: {} spp in {:.2} s, relMSE {:.3e}, MSE {:.3e} (about {:.0} s left)",
             r.spp,
             r.seconds,
             r.relmse,
             r.mse,
             secs_here / done_here as f64 * left as f64
-        );
+        ));
         results.push(r);
     }
     store.write_manifest(&c.title, &planned)?;
@@ -183,10 +200,10 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
         load_after: loadavg(),
         started: ctx_start.1,
         finished: utc_now(),
-        command: std::env::args().collect::<Vec<_>>().join(" "),
+        command: a.command.clone(),
         planned: runs.len(),
     };
-    let page = report::html(&c, &results, &infos, &ctx);
+    let page = report::html(c, &results, &infos, &ctx);
     // The files the page shows (for copying a report without every run's images).
     let mut files = vec![
         "index.html".to_string(),
@@ -194,44 +211,32 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
         "metrics.json".into(),
     ];
     files.extend(infos.iter().map(|i| i.reference_png.clone()));
-    files.extend(report::shown_files(&c, &results));
+    files.extend(report::shown_files(c, &results));
     store::write_atomic(
         &out.join("report-files.txt"),
         (files.join("\n") + "\n").as_bytes(),
     )?;
     store::write_atomic(&out.join("index.html"), page.as_bytes())?;
-    eprintln!(
-        "lumis: study: {} of {} runs finished -> {}",
-        results.len(),
-        runs.len(),
-        out.join("index.html").display()
-    );
-    if interrupted {
-        eprintln!("lumis: interrupted: finished runs are kept; rerun the same command to resume");
-        return Ok(ExitCode::from(EXIT_INTERRUPTED));
-    }
-    Ok(ExitCode::SUCCESS)
+    Ok(StudyOutcome {
+        finished: results.len(),
+        planned: runs.len(),
+        interrupted,
+        report: out.join("index.html"),
+    })
 }
 
 /// Renders one run and writes its EXR, PNG and heatmap; None if interrupted
 /// (nothing of the run is kept then).
 fn render_run(
     c: &Config,
+    a: &StudyRun,
     run: &config::Run,
     id: &str,
     args: &[String],
-    out: &Path,
     reference: &RgbImage,
     info: &report::SceneInfo,
 ) -> Result<Option<RunResult>> {
-    let argv = ["lumis", "render", "-q"]
-        .into_iter()
-        .map(String::from)
-        .chain(args.iter().cloned());
-    let cli = Cli::try_parse_from(argv).map_err(|e| anyhow!("bad flags: {e}"))?;
-    let Some(Command::Render(ra)) = cli.command else {
-        unreachable!("parsed as render")
-    };
+    let out = a.out.as_path();
     let scene = &c.scenes[run.scene];
     let dir: PathBuf = out.join(&scene.name);
     let (exr, png, heat) = (
@@ -241,18 +246,18 @@ fn render_run(
     );
     std::fs::create_dir_all(&dir)?;
     // The run as a job: its flags, its scene, its image.
-    let mut job = crate::job::job_from_args(&ra)?;
+    let mut job = (a.job_for)(args)?;
     job.scene = Some(std::path::absolute(&scene.file)?);
     job.outputs = vec![exr.clone()];
     let session = Session::new(job)?;
     if run.seed == c.seeds[0] && run.budget == c.budgets()[0] {
         for w in &session.loaded.warnings {
-            eprintln!("{w}");
+            (a.log)(&w.to_string());
         }
     }
     let o = session.render(RenderHooks {
         progress: &|_| {},
-        cancel: &CANCEL,
+        cancel: a.cancel,
         after_pass: None,
         resume: None,
     });
@@ -265,12 +270,12 @@ fn render_run(
         format!("{id}: {}", args.join(" ")),
     ));
     let region = scene.mask.map(|m| crop_bounds((img.width, img.height), m));
-    let m = compare(&img, reference, region).map_err(|e| anyhow!("against the reference: {e}"))?;
+    let m = compare(&img, reference, region).with_context(|| "against the reference".into())?;
     session.write(&img)?;
     write_image(&png, &img, info.exposure)?;
     let kind = PixelError::from_name(&c.heatmap).expect("checked");
     let range = (c.heatmap_range[0], c.heatmap_range[1]);
-    crate::heatmap::write_heatmap(&heat, &img, reference, kind, Some(range))?;
+    write_heatmap(&heat, &img, reference, kind, Some(range))?;
     Ok(Some(RunResult {
         id: id.to_string(),
         scene: scene.name.clone(),

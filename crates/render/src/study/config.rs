@@ -1,6 +1,6 @@
 //! The study configuration (TOML) and its expansion into runs.
 
-use anyhow::{bail, Context, Result};
+use super::error::{bail, Context, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -136,8 +136,7 @@ impl Config {
     pub fn load(path: &Path) -> Result<Config> {
         let text =
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-        let mut c: Config =
-            toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let mut c: Config = toml::from_str(&text).with_context(|| path.display().to_string())?;
         let base = path.parent().unwrap_or(Path::new("."));
         for s in &mut c.scenes {
             s.file = base.join(&s.file);
@@ -165,7 +164,7 @@ impl Config {
         if !(lo > 0.0 && hi > lo && hi.is_finite()) {
             bail!("heatmap_range needs 0 < lo < hi, found [{lo}, {hi}]");
         }
-        if lumis_render::metrics::PixelError::from_name(&self.heatmap).is_none() {
+        if crate::metrics::PixelError::from_name(&self.heatmap).is_none() {
             bail!("heatmap = `{}`: expected `rel` or `abs`", self.heatmap);
         }
         if !["all", "first-seed", "largest-budget"].contains(&self.show_images.as_str()) {

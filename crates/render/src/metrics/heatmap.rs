@@ -1,9 +1,8 @@
 //! False-colour error maps: per-pixel error on a log scale through viridis,
 //! with a colour bar and its numeric range drawn under the image.
 
-use anyhow::{anyhow, Result};
-use lumis_render::image_io::{write_srgb8_png, RgbImage};
-use lumis_render::metrics::{pixel_errors, PixelError};
+use super::{pixel_errors, PixelError};
+use crate::image_io::{write_srgb8_png, RgbImage};
 use std::path::Path;
 
 /// Viridis at 0, 1/8, ..., 1 (matplotlib's `viridis(9)` in sRGB), linearly
@@ -165,11 +164,11 @@ pub fn write_heatmap(
     reference: &RgbImage,
     kind: PixelError,
     range: Option<(f64, f64)>,
-) -> Result<(f64, f64)> {
-    let e = pixel_errors(test, reference, kind).map_err(|m| anyhow!("{m}"))?;
+) -> Result<(f64, f64), String> {
+    let e = pixel_errors(test, reference, kind)?;
     let range = range.unwrap_or_else(|| auto_range(&e));
     let (w, h, px) = render_heatmap(&e, test.width, test.height, range, kind.label());
-    write_srgb8_png(path, w, h, &px)?;
+    write_srgb8_png(path, w, h, &px).map_err(|e| e.to_string())?;
     Ok(range)
 }
 

@@ -1,5 +1,7 @@
 //! Image error metrics against a reference (over all channels of a region).
 
+pub mod heatmap;
+
 use crate::image_io::RgbImage;
 
 /// A pixel region `[x0, x1) x [y0, y1)`: the film's pixel bounds.

@@ -2,7 +2,7 @@
 //! after its images), and a manifest of the study; a rerun skips every run
 //! whose record exists with the same render arguments.
 
-use anyhow::{Context, Result};
+use super::error::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
