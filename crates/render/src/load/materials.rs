@@ -1,7 +1,7 @@
 //! Materials from `Material` / `MakeNamedMaterial` descriptions.
 
 use super::spectrum::{spectrum_value, Value};
-use super::textures::TexBuilder;
+use super::texture::TexBuilder;
 use super::Warnings;
 use crate::bsdf::microfacet::MicrofacetModel;
 use crate::material::*;

@@ -2,7 +2,7 @@
 //! pbrt-v4's parameter names and defaults.
 
 use super::materials::{conductor_spec, eta_param, roughness, ROUGH};
-use super::textures::TexBuilder;
+use super::texture::TexBuilder;
 use super::Warnings;
 use crate::material::*;
 use lumis_math::Rgb;

@@ -1,6 +1,6 @@
 //! pbrt-v4's layered materials: coateddiffuse, coatedconductor.
 
-use super::textures::TexBuilder;
+use super::texture::TexBuilder;
 use super::Warnings;
 use crate::material::*;
 use lumis_scene::{Diagnostic, ParamSet, SceneDesc};

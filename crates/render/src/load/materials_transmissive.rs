@@ -2,7 +2,7 @@
 //! `diffusetransmission`.
 
 use super::materials::eta_param;
-use super::textures::TexBuilder;
+use super::texture::TexBuilder;
 use super::Warnings;
 use crate::material::*;
 use lumis_math::Rgb;

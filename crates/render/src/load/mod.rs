@@ -14,8 +14,7 @@ pub mod options;
 pub mod photon;
 mod shapes;
 mod spectrum;
-mod textures;
-mod textures_procedural;
+mod texture;
 
 pub use options::RenderOptions;
 
@@ -107,7 +106,7 @@ pub fn build_scene(
     }
     let options = options::build_options(desc, overrides, &mut w)?;
     let camera = options::build_camera(desc, &options, &mut w)?;
-    let mut tex = textures::TexBuilder::new(desc, &mut w)?;
+    let mut tex = texture::build_textures(desc, &mut w)?;
     let materials = materials::build_materials(desc, &mut tex, &mut w)?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
