@@ -5,10 +5,7 @@
 mod area_lights;
 mod envmap;
 mod lights;
-mod materials;
-mod materials_coated;
-mod materials_layered;
-mod materials_transmissive;
+mod material;
 mod mesh;
 pub mod options;
 pub mod photon;
@@ -107,7 +104,7 @@ pub fn build_scene(
     let options = options::build_options(desc, overrides, &mut w)?;
     let camera = options::build_camera(desc, &options, &mut w)?;
     let mut tex = texture::build_textures(desc, &mut w)?;
-    let materials = materials::build_materials(desc, &mut tex, &mut w)?;
+    let materials = material::build_materials(desc, &mut tex, &mut w)?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
     let (prims, instances) =

@@ -1,6 +1,6 @@
 //! Shapes (trianglemesh, plymesh, sphere, disk) and their area lights.
 
-use super::materials::BuiltMaterials;
+use super::material::BuiltMaterials;
 use super::mesh::{bilinear_triangles, make_mesh, push_mesh};
 use super::Warnings;
 use crate::geometry::subdiv::loop_subdivide;
