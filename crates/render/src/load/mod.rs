@@ -6,10 +6,9 @@ mod area_lights;
 mod envmap;
 mod lights;
 mod material;
-mod mesh;
 pub mod options;
 pub mod photon;
-mod shapes;
+mod shape;
 mod spectrum;
 mod texture;
 
@@ -108,7 +107,7 @@ pub fn build_scene(
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
     let (prims, instances) =
-        shapes::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
+        shape::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
     lights::build_lights(desc, &mut lights, &mut w)?;
     if lights.is_empty() {
         w.push(
