@@ -28,13 +28,35 @@ use super::Warnings;
 use crate::material::{Material, Shading};
 use crate::texture::TexFloat;
 use common::{Built, Ctx};
-use lumis_scene::{Diagnostic, Entity, MaterialDesc, SceneDesc};
+use lumis_scene::{Diagnostic, Entity, MaterialDesc, MaterialRef, SceneDesc};
 
 pub struct BuiltMaterials {
     /// One per description material, in the description's order, then the default.
     pub materials: Vec<Material>,
     /// Index of the default material (pbrt's diffuse 0.5), appended last.
     pub default: u32,
+}
+
+impl BuiltMaterials {
+    /// The runtime id of the material a shape refers to: the material's
+    /// index in `desc.materials` (materials are built in that order), or
+    /// [`Self::default`]. An undefined name is an error at the reference.
+    pub fn id(&self, desc: &SceneDesc, r: &MaterialRef) -> Result<u32, Diagnostic> {
+        let i = match r {
+            MaterialRef::Default => return Ok(self.default),
+            MaterialRef::Index(i) => *i,
+            MaterialRef::Named(name, _) => match desc.named_materials.get(name) {
+                Some(&i) => i,
+                // `SceneDesc::material` makes the located error (with suggestions).
+                None => return desc.material(r).map(|_| self.default),
+            },
+        };
+        Ok(if (i as usize) < desc.materials.len() {
+            i
+        } else {
+            self.default
+        })
+    }
 }
 
 pub fn build_materials(
@@ -109,4 +131,39 @@ fn unsupported(e: &Entity, w: &mut Warnings) -> Built {
         q.mark_used();
     }
     (diffuse::default_kind(), vec![])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn shapes_get_the_description_index_of_their_material() {
+        let desc = lumis_scene::load_str(
+            r#"WorldBegin
+            Shape "sphere"
+            MakeNamedMaterial "a" "string type" "diffuse"
+            Material "conductor"
+            Shape "sphere"
+            MakeNamedMaterial "b" "string type" "dielectric"
+            NamedMaterial "a" Shape "sphere"
+            NamedMaterial "b" Shape "sphere"
+            NamedMaterial "missing" Shape "sphere""#,
+            "ids.pbrt",
+            Path::new("."),
+        )
+        .unwrap();
+        let mats = BuiltMaterials {
+            materials: Vec::new(),
+            default: desc.materials.len() as u32,
+        };
+        let ids: Vec<_> = desc.shapes[..4]
+            .iter()
+            .map(|s| mats.id(&desc, &s.material).unwrap())
+            .collect();
+        assert_eq!(ids, [3, 1, 0, 2]);
+        let err = mats.id(&desc, &desc.shapes[4].material).unwrap_err();
+        assert!(err.message.contains("`missing` is not defined"), "{err:?}");
+    }
 }

@@ -72,16 +72,7 @@ fn add_shapes(
 ) -> Result<Vec<PrimInfo>, Diagnostic> {
     let mut prims = Vec::new();
     for s in list {
-        // Material indices follow the description's order; named ones resolve here.
-        let material = match desc.material(&s.material)? {
-            None => mats.default,
-            Some(m) => desc
-                .materials
-                .iter()
-                .position(|x| std::ptr::eq(x, m))
-                .map(|i| i as u32)
-                .unwrap_or(mats.default),
-        };
+        let material = mats.id(desc, &s.material)?;
         let new_prims = match build_shape(desc, s, w)? {
             Some(built) => store(shapes, built),
             None => continue,
