@@ -9,17 +9,12 @@
 mod area_lights;
 mod envmap;
 mod lights;
-mod materials;
-mod materials_coated;
-mod materials_layered;
-mod materials_transmissive;
-mod mesh;
+mod material;
 pub mod options;
 pub mod photon;
-mod shapes;
+mod shape;
 mod spectrum;
-mod textures;
-mod textures_procedural;
+mod texture;
 
 pub use options::RenderOptions;
 
@@ -98,12 +93,12 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
     }
     let options = options::build_options(desc, overrides, &mut w)?;
     let camera = options::build_camera(desc, &options, &mut w)?;
-    let mut tex = textures::TexBuilder::new(desc, &mut w)?;
-    let materials = materials::build_materials(desc, &mut tex, &mut w)?;
+    let mut tex = texture::build_textures(desc, &mut w)?;
+    let materials = material::build_materials(desc, &mut tex, &mut w)?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
     let (prims, instances) =
-        shapes::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
+        shape::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
     lights::build_lights(desc, &mut lights, &mut w)?;
     if lights.is_empty() {
         w.push(

@@ -1,9 +1,9 @@
 //! Materials: what a surface is made of, turned into a BSDF at a hit.
 //!
 //! To add a material: a file here with its struct and `bsdf()`, a variant in
-//! [`MaterialKind`], and its parameters in `load/materials.rs`. Parameters that
-//! pbrt-v4 allows to be textures are [`TexRgb`](crate::texture::TexRgb) /
-//! [`TexFloat`](crate::texture::TexFloat).
+//! [`MaterialKind`], and its parameters in a file of `load/material/`.
+//! Parameters that pbrt-v4 allows to be textures are
+//! [`TexRgb`](crate::texture::TexRgb) / [`TexFloat`](crate::texture::TexFloat).
 
 mod coat;
 mod coated_conductor;

@@ -1,72 +1,59 @@
-//! Triangle meshes from scene parameters: checked, transformed to world space.
+//! `bilinearmesh`: pbrt-v4's bilinear patches (`P`, `indices` in fours,
+//! optional `uv` and `N`), rendered as triangles: planar patches exactly,
+//! twisted ones as a fine grid on the bilinear surface.
 
-use crate::geometry::{Prim, TriangleMesh};
-use crate::scene::Shapes;
-use lumis_math::{Vec2, Vec3};
-use lumis_scene::{Diagnostic, Entity};
+use super::common::{make_mesh, Built, Ctx};
+use crate::load::Warnings;
+use lumis_math::{Transform, Vec2, Vec3};
+use lumis_scene::Diagnostic;
 
-pub(super) fn make_mesh(
-    e: &Entity,
-    pos: Vec<Vec3>,
-    normals: Option<Vec<Vec3>>,
-    uvs: Option<Vec<Vec2>>,
-    indices: Vec<i32>,
-    xf: &lumis_math::Transform,
-    flip: bool,
-) -> Result<TriangleMesh, Diagnostic> {
-    if !indices.len().is_multiple_of(3) {
-        return Err(Diagnostic::error(
-            &e.loc,
-            format!("{} indices is not a multiple of 3", indices.len()),
-        ));
-    }
-    if let Some(&bad) = indices.iter().find(|&&i| i < 0 || i as usize >= pos.len()) {
+pub(super) fn build(c: &Ctx, w: &mut Warnings) -> Result<Built, Diagnostic> {
+    let (e, p) = (c.e, c.p);
+    let pos = p
+        .get_point3s("P")?
+        .ok_or_else(|| Diagnostic::error(&e.loc, "bilinearmesh needs \"point3 P\""))?;
+    let indices = match p.get_ints("indices")? {
+        Some(i) => i,
+        None if pos.len() == 4 => vec![0, 1, 2, 3],
+        None => {
+            return Err(Diagnostic::error(
+                &e.loc,
+                "bilinearmesh needs \"integer indices\" (only a single patch may omit them)",
+            ))
+        }
+    };
+    let uvs = p.get_point2s("uv")?;
+    let normals = p.get_normals("N")?;
+    p.mark_used("faceIndices");
+    w.unused(
+        p,
+        "shape \"bilinearmesh\"",
+        &["P", "indices", "uv", "N", "faceIndices"],
+    );
+    if !indices.len().is_multiple_of(4) {
         return Err(Diagnostic::error(
             &e.loc,
             format!(
-                "vertex index {bad} is out of range (the mesh has {} vertices)",
-                pos.len()
+                "bilinearmesh: {} indices is not a multiple of 4",
+                indices.len()
             ),
         ));
     }
-    if let Some(n) = &normals {
-        if n.len() != pos.len() {
-            return Err(Diagnostic::error(
-                &e.loc,
-                format!("{} normals for {} vertices", n.len(), pos.len()),
-            ));
-        }
-    }
-    if let Some(uv) = &uvs {
-        if uv.len() != pos.len() {
-            return Err(Diagnostic::error(
-                &e.loc,
-                format!("{} uvs for {} vertices", uv.len(), pos.len()),
-            ));
-        }
-    }
-    Ok(TriangleMesh {
-        positions: pos.iter().map(|&v| xf.point(v)).collect(),
-        normals: normals.map(|n| {
-            n.iter()
-                .map(|&v| xf.normal(v).normalize_or_zero())
-                .collect()
-        }),
-        uvs,
-        indices: indices.iter().map(|&i| i as u32).collect(),
-        flip_normals: flip,
-    })
-}
-
-/// Adds a mesh; degenerate (zero-area) triangles are left out.
-pub(super) fn push_mesh(shapes: &mut Shapes, mesh: TriangleMesh) -> Vec<Prim> {
-    let id = shapes.meshes.len() as u32;
-    let prims = (0..mesh.triangle_count() as u32)
-        .filter(|&t| mesh.area(t) > 0.0)
-        .map(|tri| Prim::Triangle { mesh: id, tri })
+    // Checked as a mesh (index range, uv and normal counts) before use.
+    let tris: Vec<i32> = indices
+        .chunks(4)
+        .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
         .collect();
-    shapes.meshes.push(mesh);
-    prims
+    let checked = make_mesh(e, pos, normals, uvs, tris, &Transform::IDENTITY, false)?;
+    let idx: Vec<u32> = indices.iter().map(|&i| i as u32).collect();
+    let (bp, buv, bn, bi) = bilinear_triangles(
+        &checked.positions,
+        &idx,
+        checked.uvs.as_deref(),
+        checked.normals.as_deref(),
+    );
+    let mesh = make_mesh(e, bp, bn, Some(buv), bi, &c.xf, c.flip)?;
+    Ok(Built::Mesh(mesh))
 }
 
 /// Grid cells per side for a non-planar bilinear patch.
@@ -79,7 +66,7 @@ const BILINEAR_CELLS: usize = 16;
 /// patch's twist of pbrt-v4's exact surface. Returns positions, uvs,
 /// normals (if given) and triangle indices.
 #[allow(clippy::type_complexity)]
-pub(super) fn bilinear_triangles(
+fn bilinear_triangles(
     p: &[Vec3],
     idx: &[u32],
     uv: Option<&[Vec2]>,
