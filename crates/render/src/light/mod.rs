@@ -112,6 +112,44 @@ pub enum Light {
 }
 
 impl Light {
+    /// Luminance of the flux (times the photon count) a photon carries when
+    /// it leaves this light at `p` (normal `n`) in direction `w` with
+    /// emitted luminance `le_lum`: `le cos / (pdf_pos pdf_dir pmf)` with the
+    /// densities of [`Light::sample_le`] (`aimed_pdf` replaces the direction
+    /// density of an area light's aimed photons); infinite for delta lights.
+    #[allow(clippy::too_many_arguments)]
+    pub fn emitted_flux(
+        &self,
+        shapes: &Shapes,
+        pmf: f32,
+        p: Vec3,
+        n: Vec3,
+        w: Vec3,
+        le_lum: f32,
+        aimed_pdf: Option<f32>,
+    ) -> f32 {
+        match self {
+            Light::Area(a) => {
+                let pdf_pos = a.pdf_pos(shapes, p);
+                let cos = n.dot(w).abs();
+                let pdf_dir = match aimed_pdf {
+                    Some(pdf) => pdf,
+                    None => cos / lumis_math::PI * if a.two_sided { 0.5 } else { 1.0 },
+                };
+                le_lum * cos / (pdf_pos * pdf_dir * pmf)
+            }
+            Light::Infinite(l) => {
+                le_lum * lumis_math::PI * l.scene_radius * l.scene_radius
+                    / (lumis_math::sampling::UNIFORM_SPHERE_PDF * pmf)
+            }
+            // `w` is the direction of travel; the map was sampled towards `-w`.
+            Light::Image(l) => {
+                le_lum * lumis_math::PI * l.scene_radius * l.scene_radius / (l.pdf_li(-w) * pmf)
+            }
+            _ => f32::INFINITY,
+        }
+    }
+
     pub fn preprocess(&mut self, scene_bounds: &Aabb) {
         match self {
             Light::Distant(l) => l.preprocess(scene_bounds),

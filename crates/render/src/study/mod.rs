@@ -152,11 +152,11 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
     let ctx_start = (loadavg(), utc_now());
     let runs = c.runs();
     let mut results: Vec<RunResult> = Vec::new();
-    let mut planned: Vec<(String, bool)> = runs.iter().map(|r| (r.id(&c), false)).collect();
+    let mut planned: Vec<(String, bool)> = runs.iter().map(|r| (r.id(c), false)).collect();
     let (mut done_here, mut secs_here) = (0usize, 0.0f64);
     let mut interrupted = false;
     for (k, run) in runs.iter().enumerate() {
-        let id = run.id(&c);
+        let id = run.id(c);
         let args = c.render_args(run);
         let tag = format!("[{}/{}] {id}", k + 1, runs.len());
         if let Some(r) = store.finished(&id, &args) {

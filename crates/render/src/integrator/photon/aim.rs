@@ -13,7 +13,7 @@ use crate::scene::Scene;
 use lumis_math::sampling::{
     square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf, UNIFORM_SPHERE_PDF,
 };
-use lumis_math::{Frame, Rgb, Vec2, Vec3, PI};
+use lumis_math::{Frame, Rgb, Vec2, Vec3};
 use std::collections::BTreeMap;
 
 /// Bounding spheres of the specular shapes.
@@ -145,7 +145,8 @@ pub fn aimed_emission(
 
 /// Luminance of the flux (times N) a caustic photon would carry had it left
 /// light `li` at `p` (normal `n`) in direction `w`: what a gather ray that
-/// reached the light there needs for its q_1.
+/// reached the light there needs for its q_1. The light's own emission
+/// densities, with the aimed direction density when photons are aimed.
 pub fn emitted_flux(
     scene: &Scene,
     targets: Option<&Targets>,
@@ -156,21 +157,11 @@ pub fn emitted_flux(
     le_lum: f32,
 ) -> f32 {
     let pmf = scene.light_sampler.pmf(li);
-    match &scene.lights[li as usize] {
-        Light::Area(a) => {
-            let pdf_pos = a.pdf_pos(&scene.shapes, p);
-            let cos = n.dot(w).abs();
-            let pdf_dir = match targets {
-                Some(t) => t.pdf(p, w),
-                None => cos / PI * if a.two_sided { 0.5 } else { 1.0 },
-            };
-            le_lum * cos / (pdf_pos * pdf_dir * pmf)
-        }
-        Light::Infinite(l) => {
-            le_lum * PI * l.scene_radius * l.scene_radius / (UNIFORM_SPHERE_PDF * pmf)
-        }
-        // `w` is the direction of travel; the map was sampled towards `-w`.
-        Light::Image(l) => le_lum * PI * l.scene_radius * l.scene_radius / (l.pdf_li(-w) * pmf),
-        _ => f32::INFINITY,
-    }
+    let light = &scene.lights[li as usize];
+    // Only area-light photons are aimed (and need the density).
+    let aimed_pdf = match light {
+        Light::Area(_) => targets.map(|t| t.pdf(p, w)),
+        _ => None,
+    };
+    light.emitted_flux(&scene.shapes, pmf, p, n, w, le_lum, aimed_pdf)
 }
