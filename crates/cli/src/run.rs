@@ -5,9 +5,11 @@ use crate::args::{Cli, Command, RenderArgs};
 use crate::interrupt::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
 use crate::progress::Reporter;
 use anyhow::Result;
-use lumis_render::integrator::{BadSample, RenderHooks, RenderState};
-use lumis_render::session::{load_checkpoint, Phases, Session};
-use std::path::Path;
+use lumis_render::checkpoint::Checkpoint;
+use lumis_render::image_io::RgbImage;
+use lumis_render::integrator::{BadSample, RenderHooks, RenderOutcome, RenderState};
+use lumis_render::session::{load_checkpoint, Phases, RenderJob, Session};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
@@ -61,27 +63,7 @@ fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
 }
 
 fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
-    let (job, resumed) = match &a.resume {
-        None => (crate::job::job_from_args(&a)?, None),
-        Some(file) => {
-            let file = std::path::absolute(file).unwrap_or(file.clone());
-            let (saved, ck) = load_checkpoint(&file)?;
-            let job = match a.scene {
-                // The arguments describe the render; the checkpoint must match.
-                Some(_) => {
-                    let mut job = crate::job::job_from_args(&a)?;
-                    job.checkpoint
-                        .get_or_insert(lumis_render::session::CheckpointSpec {
-                            path: file.clone(),
-                            every: a.checkpoint_every,
-                        });
-                    job
-                }
-                None => crate::job::resumed_job(&a, saved)?,
-            };
-            (job, Some((file, ck)))
-        }
-    };
+    let (job, resumed) = job_and_checkpoint(&a)?;
     let session = Session::new(job)?;
     for w in &session.loaded.warnings {
         eprintln!("{w}");
@@ -164,29 +146,7 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     let t = Instant::now();
     let files = session.write(&img)?;
     let write_time = t.elapsed();
-    let secs = out.elapsed.as_secs_f64();
-    let names: Vec<String> = files.iter().map(|f| shown(f, &session.job.dir)).collect();
-    eprintln!(
-        "lumis: {}x{} {} spp ({}) in {:.2} s, {:.2} Mrays/s -> {}",
-        img.width,
-        img.height,
-        out.spp,
-        session.loaded.options.integrator.name(),
-        secs,
-        out.rays as f64 / secs.max(1e-9) / 1e6,
-        names.join(", ")
-    );
-    if let Some(ps) = &out.photon_stats {
-        eprintln!(
-            "lumis: photons: {} global, {} caustic stored; tracing {:.2} s, maps {:.2} s, radiance photons {:.2} s, {:.1} MiB",
-            ps.global_stored,
-            ps.caustic_stored,
-            ps.trace_time.as_secs_f64(),
-            ps.build_time.as_secs_f64(),
-            ps.radiance_time.as_secs_f64(),
-            ps.memory_bytes as f64 / (1u64 << 20) as f64
-        );
-    }
+    print_summary(&session, &out, &img, &files);
     if a.stats {
         let phases = Phases {
             write: write_time,
@@ -213,6 +173,61 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         return Ok(ExitCode::from(EXIT_INTERRUPTED));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The job the arguments describe and, with `--resume`, the checkpoint
+/// (and its path) the render continues.
+fn job_and_checkpoint(a: &RenderArgs) -> Result<(RenderJob, Option<(PathBuf, Checkpoint)>)> {
+    let out = match &a.resume {
+        None => (crate::job::job_from_args(a)?, None),
+        Some(file) => {
+            let file = std::path::absolute(file).unwrap_or(file.clone());
+            let (saved, ck) = load_checkpoint(&file)?;
+            let job = match &a.scene {
+                // The arguments describe the render; the checkpoint must match.
+                Some(_) => {
+                    let mut job = crate::job::job_from_args(a)?;
+                    job.checkpoint
+                        .get_or_insert(lumis_render::session::CheckpointSpec {
+                            path: file.clone(),
+                            every: a.checkpoint_every,
+                        });
+                    job
+                }
+                None => crate::job::resumed_job(a, saved)?,
+            };
+            (job, Some((file, ck)))
+        }
+    };
+    Ok(out)
+}
+
+/// The closing summary: size, samples, integrator, time, rays, files; the
+/// photon pass for `photon`.
+fn print_summary(session: &Session, out: &RenderOutcome, img: &RgbImage, files: &[PathBuf]) {
+    let secs = out.elapsed.as_secs_f64();
+    let names: Vec<String> = files.iter().map(|f| shown(f, &session.job.dir)).collect();
+    eprintln!(
+        "lumis: {}x{} {} spp ({}) in {:.2} s, {:.2} Mrays/s -> {}",
+        img.width,
+        img.height,
+        out.spp,
+        session.loaded.options.integrator.name(),
+        secs,
+        out.rays as f64 / secs.max(1e-9) / 1e6,
+        names.join(", ")
+    );
+    if let Some(ps) = &out.photon_stats {
+        eprintln!(
+            "lumis: photons: {} global, {} caustic stored; tracing {:.2} s, maps {:.2} s, radiance photons {:.2} s, {:.1} MiB",
+            ps.global_stored,
+            ps.caustic_stored,
+            ps.trace_time.as_secs_f64(),
+            ps.build_time.as_secs_f64(),
+            ps.radiance_time.as_secs_f64(),
+            ps.memory_bytes as f64 / (1u64 << 20) as f64
+        );
+    }
 }
 
 /// A written file as the user named it: relative to the job's folder when inside it.
