@@ -3,8 +3,10 @@
 use crate::loc::{Diagnostic, Loc};
 use crate::params::ParamSet;
 use lumis_math::Transform;
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 pub use crate::params::SpectrumValue;
 
@@ -100,6 +102,20 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     pub warnings: Vec<Diagnostic>,
     pub saw_world_begin: bool,
+    /// What the scene was made of; see [`SceneDesc::inputs`].
+    inputs: RefCell<Inputs>,
+}
+
+/// Everything a scene was made of: what makes two loads of it the same scene.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Inputs {
+    /// The top-level text when it was given as text, not read from a file
+    /// (the built-in default scene, [`crate::load_str`]).
+    pub text: Option<Arc<str>>,
+    /// Every file read (absolute), each once, in first-read order: the main file, its
+    /// `Include`/`Import` files, then the assets the loader opened (meshes,
+    /// images, spectra).
+    pub files: Vec<PathBuf>,
 }
 
 impl SceneDesc {
@@ -108,6 +124,34 @@ impl SceneDesc {
             base_dir: base_dir.to_path_buf(),
             ..SceneDesc::default()
         }
+    }
+
+    /// The text and files this scene was made of so far.
+    pub fn inputs(&self) -> Inputs {
+        self.inputs.borrow().clone()
+    }
+
+    /// Notes that `path` is read for this scene (once; later notes of it
+    /// are ignored). It is kept absolute, so a later change of the current
+    /// folder does not lose it.
+    pub fn note_read(&self, path: &Path) {
+        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        let mut inputs = self.inputs.borrow_mut();
+        if !inputs.files.contains(&path) {
+            inputs.files.push(path);
+        }
+    }
+
+    /// Notes the top-level text given as text (not as a file).
+    pub(crate) fn note_text(&self, text: &str) {
+        self.inputs.borrow_mut().text = Some(text.into());
+    }
+
+    /// [`SceneDesc::resolve_path`] for a file about to be read: notes it as an input.
+    pub fn read_path(&self, p: &str) -> PathBuf {
+        let path = self.resolve_path(p);
+        self.note_read(&path);
+        path
     }
 
     /// `p` as written in the scene, resolved against the top-level file's folder.

@@ -134,6 +134,16 @@ pub(crate) struct PendingInstance {
 
 /// Parses scene text (and its `Include`s) into a description.
 pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, Diagnostic> {
+    parse(text, name, base_dir, None)
+}
+
+/// Parses the text of `file` (or text given as such, when `None`).
+fn parse(
+    text: &str,
+    name: &str,
+    base_dir: &Path,
+    file: Option<&Path>,
+) -> Result<SceneDesc, Diagnostic> {
     let mut b = Builder {
         desc: SceneDesc::new(base_dir),
         gs: GraphicsState {
@@ -153,6 +163,10 @@ pub fn parse_str(text: &str, name: &str, base_dir: &Path) -> Result<SceneDesc, D
         depth: 0,
         warned_once: Vec::new(),
     };
+    match file {
+        Some(path) => b.desc.note_read(path),
+        None => b.desc.note_text(text),
+    }
     b.run(SourceFile::new(name, text))?;
     for inst in std::mem::take(&mut b.pending_instances) {
         let Some(&object) = b.object_names.get(&inst.name) else {
@@ -210,7 +224,7 @@ pub fn parse_file(path: &Path) -> Result<SceneDesc, Diagnostic> {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    parse_str(&text, &path.display().to_string(), base)
+    parse(&text, &path.display().to_string(), base, Some(path))
 }
 
 /// Strips one pair of enclosing brackets, if present.

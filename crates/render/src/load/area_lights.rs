@@ -108,7 +108,7 @@ fn read_image(desc: &SceneDesc, al: &Entity, file: &str) -> Result<EmissionImage
         .params
         .loc_of("filename")
         .unwrap_or_else(|| al.loc.clone());
-    let path = desc.resolve_path(file);
+    let path = desc.read_path(file);
     let level = read_texture_image(&path, Encoding::Srgb).map_err(|e| {
         Diagnostic::error(
             &loc,

@@ -100,7 +100,7 @@ fn read_light_image(
     file: &str,
     loc: &lumis_scene::Loc,
 ) -> Result<(std::path::PathBuf, crate::image_io::RgbImage), Diagnostic> {
-    let path = desc.resolve_path(file);
+    let path = desc.read_path(file);
     let img = read_image(&path).map_err(|err| Diagnostic::error(loc, err.to_string()))?;
     if img.data.iter().any(|v| !v.is_finite()) {
         return Err(Diagnostic::error(

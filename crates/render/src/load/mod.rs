@@ -8,6 +8,7 @@
 
 mod area_lights;
 mod envmap;
+mod inputs;
 mod lights;
 mod material;
 pub mod options;
@@ -16,6 +17,8 @@ mod shape;
 mod spectrum;
 mod texture;
 
+pub use inputs::inputs_hash;
+pub use lumis_scene::Inputs;
 pub use options::RenderOptions;
 
 use crate::scene::{Scene, Shapes};
@@ -27,6 +30,8 @@ pub struct LoadedScene {
     pub scene: Scene,
     pub options: RenderOptions,
     pub warnings: Vec<Diagnostic>,
+    /// The text and every file it was built from (see [`inputs_hash`]).
+    pub inputs: Inputs,
 }
 
 /// Collects warnings during the build.
@@ -128,6 +133,7 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
         scene,
         options,
         warnings: w.0,
+        inputs: desc.inputs(),
     })
 }
 

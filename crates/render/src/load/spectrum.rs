@@ -64,7 +64,7 @@ pub fn spectrum_value(
 /// A `.spd` file: whitespace-separated (wavelength nm, value) pairs, `#`
 /// starting a comment, wavelengths increasing (as pbrt-v4 reads it).
 fn read_spd(desc: &SceneDesc, file: &str, loc: &Loc) -> Result<Spectrum, Diagnostic> {
-    let path = desc.resolve_path(file);
+    let path = desc.read_path(file);
     let text = std::fs::read_to_string(&path).map_err(|e| {
         Diagnostic::error(
             loc,

@@ -79,10 +79,6 @@ impl Session {
         let mut phases = Phases::default();
         let t = Instant::now();
         let scene_path = job.scene.as_ref().map(|p| job.resolve(p));
-        let scene_text: Vec<u8> = match &scene_path {
-            Some(p) => std::fs::read(p).unwrap_or_default(),
-            None => DEFAULT_SCENE.as_bytes().to_vec(),
-        };
         let desc = match &scene_path {
             Some(p) => lumis_scene::load_file(p),
             None => lumis_scene::load_str(DEFAULT_SCENE, "<built-in default scene>", &job.dir),
@@ -119,7 +115,7 @@ impl Session {
             inject_nan: job.inject_nan,
             ..o.render_settings(spp, job.seed, job.threads)
         };
-        let hash = scene_hash(&scene_text, &loaded, &settings);
+        let hash = scene_hash(&loaded, &settings);
         Ok(Session {
             job,
             loaded,
@@ -252,34 +248,16 @@ pub fn load_checkpoint(path: &Path) -> Result<(RenderJob, Checkpoint), SessionEr
 }
 
 /// Ties a checkpoint to the scene and every setting that changes the image:
-/// the main file's text, the built geometry (so edits of included files and
-/// meshes count too) and the render settings.
-fn scene_hash(scene_text: &[u8], l: &LoadedScene, s: &RenderSettings) -> u64 {
-    let scene = &l.scene;
+/// the scene's inputs (its text and every file read to build it: included
+/// files, meshes, images, spectra) and the render settings.
+fn scene_hash(l: &LoadedScene, s: &RenderSettings) -> u64 {
     let mut h = Fnv::default();
-    h.write(scene_text);
-    for m in &scene.shapes.meshes {
-        for p in &m.positions {
-            for v in p.to_array() {
-                h.write(&v.to_bits().to_le_bytes());
-            }
-        }
-        for i in &m.indices {
-            h.write(&i.to_le_bytes());
-        }
-    }
-    h.write_str(&format!(
-        "{:?} {:?} lights {} materials {}",
-        scene.shapes.spheres,
-        scene.shapes.disks,
-        scene.lights.len(),
-        scene.materials.len()
-    ))
-    .write_str(&format!("{:?}", l.options))
-    .write_str(&format!(
-        "spp {} seed {} clamp {:?} sampler {:?} nan {:?} pass {}",
-        s.spp, s.seed, s.clamp, s.sampler, s.inject_nan, s.spp_per_pass
-    ));
+    h.write(&crate::load::inputs_hash(&l.inputs).to_le_bytes())
+        .write_str(&format!("{:?}", l.options))
+        .write_str(&format!(
+            "spp {} seed {} clamp {:?} sampler {:?} nan {:?} pass {}",
+            s.spp, s.seed, s.clamp, s.sampler, s.inject_nan, s.spp_per_pass
+        ));
     h.0
 }
 

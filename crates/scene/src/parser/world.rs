@@ -324,7 +324,7 @@ impl Builder {
                 "Include nesting is too deep (an include cycle?)",
             ));
         }
-        let path = self.desc.resolve_path(file);
+        let path = self.desc.read_path(file);
         let text = super::read_scene_text(&path).map_err(|e| {
             Diagnostic::error(
                 loc,

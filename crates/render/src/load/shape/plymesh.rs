@@ -13,7 +13,7 @@ pub(super) fn build(c: &Ctx, w: &mut Warnings) -> Result<Built, Diagnostic> {
             "plymesh needs \"string filename\"",
         ));
     }
-    let path = c.desc.resolve_path(&file);
+    let path = c.desc.read_path(&file);
     let loc = p.loc_of("filename").unwrap_or(e.loc.clone());
     let ply = lumis_scene::ply::read_ply(&path)
         .map_err(|err| Diagnostic::error(&loc, format!("{err}")))?;

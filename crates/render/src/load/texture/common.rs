@@ -128,7 +128,7 @@ impl<'a> TexBuilder<'a> {
         let Some(file) = p.get_opt_string("normalmap")? else {
             return Ok(None);
         };
-        let path = self.desc.resolve_path(&file);
+        let path = self.desc.read_path(&file);
         if let Some(&id) = self.normal_maps.get(&path) {
             return Ok(Some(id));
         }

@@ -75,7 +75,7 @@ fn image(
             .with_help("expected repeat, black or clamp")
     })?;
     p.mark_used("maxanisotropy");
-    let path = b.desc().resolve_path(&file);
+    let path = b.desc().read_path(&file);
     let mipmap = b.image(path, enc_name, enc, &loc("filename"))?;
     Ok(ImageTexture {
         mipmap,
