@@ -68,7 +68,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let reps = if a.quick { 3 } else { 7 };
     let tris = if a.quick { 100_000 } else { 1_000_000 };
     let threads = rayon::current_num_threads();
-    println!(
+    outln!(
         "lumis bench ({} threads available; medians of {reps} runs)",
         threads
     );
@@ -112,18 +112,18 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let build = time_it(reps, || {
         std::hint::black_box(MeshAccel::new(&mesh));
     });
-    println!(
+    outln!(
         "| BVH build, {} triangles ({threads} threads) | {:.0} ms |",
         mesh.triangle_count(),
         build * 1e3
     );
-    println!(
+    outln!(
         "| BVH memory (nodes + leaf-ordered triangles) | {:.1} MiB |",
         memory as f64 / (1u64 << 20) as f64
     );
-    println!("| closest hit, random rays, 1 thread | {r_random:.2} Mrays/s |");
-    println!("| closest hit, rays aimed inward, 1 thread | {r_inward:.2} Mrays/s |");
-    println!("| any hit, random shadow rays, 1 thread | {r_any:.2} Mrays/s |");
+    outln!("| closest hit, random rays, 1 thread | {r_random:.2} Mrays/s |");
+    outln!("| closest hit, rays aimed inward, 1 thread | {r_inward:.2} Mrays/s |");
+    outln!("| any hit, random shadow rays, 1 thread | {r_any:.2} Mrays/s |");
     #[cfg(feature = "embree")]
     embree_rates(
         &mesh,
@@ -140,7 +140,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let spp = 4;
     let out = render_all(&l, spp);
     let secs = out.elapsed.as_secs_f64();
-    println!(
+    outln!(
         "| path, default scene {res}x{res}, {spp} spp ({threads} threads) | {:.2} Msamples/s, {:.2} Mrays/s, {:.2} s |",
         (res * res * spp) as f64 / secs / 1e6,
         out.rays as f64 / secs / 1e6,
@@ -160,21 +160,21 @@ pub fn run(a: BenchArgs) -> Result<()> {
     let maps = PhotonMaps::build(&l.scene, ps, 0, &never).expect("not cancelled");
     let emitted = (ps.global_photons + ps.caustic_photons) as f64;
     let st = &maps.stats;
-    println!(
+    outln!(
         "| photon tracing, default scene ({threads} threads) | {:.2} M photons emitted/s ({} global + {} caustic stored) |",
         emitted / st.trace_time.as_secs_f64() / 1e6,
         st.global_stored,
         st.caustic_stored
     );
-    println!(
+    outln!(
         "| photon map build (global + caustic) | {:.0} ms |",
         st.build_time.as_secs_f64() * 1e3
     );
-    println!(
+    outln!(
         "| radiance photons precompute | {:.0} ms |",
         st.radiance_time.as_secs_f64() * 1e3
     );
-    println!(
+    outln!(
         "| photon maps memory | {:.1} MiB |",
         st.memory_bytes as f64 / (1u64 << 20) as f64
     );
@@ -208,11 +208,11 @@ pub fn run(a: BenchArgs) -> Result<()> {
             }
         })
     });
-    println!(
+    outln!(
         "| photon map build, {n} photons | {:.0} ms |",
         map_build * 1e3
     );
-    println!(
+    outln!(
         "| k-NN query, k = 50 among {n} photons, 1 thread | {:.2} µs/query ({:.0} k queries/s) |",
         knn / queries.len() as f64 * 1e6,
         queries.len() as f64 / knn / 1e3
@@ -221,13 +221,13 @@ pub fn run(a: BenchArgs) -> Result<()> {
 
     let out = render_all(&l, l.options.spp);
     let (w, h) = (out.film.width(), out.film.height());
-    println!(
+    outln!(
         "| photon, default scene as shipped: {w}x{h}, {} spp ({threads} threads) | {:.1} s (incl. photon pass) |",
         out.spp,
         out.elapsed.as_secs_f64()
     );
     if let Some(m) = peak_memory_mib() {
-        println!("| peak memory of this run (VmHWM) | {m:.0} MiB |");
+        outln!("| peak memory of this run (VmHWM) | {m:.0} MiB |");
     }
     Ok(())
 }
@@ -245,7 +245,7 @@ fn embree_rates(
         std::hint::black_box(EmbreeMesh::new(mesh));
     });
     let em = EmbreeMesh::new(mesh);
-    println!("| Embree 3 build, same mesh | {:.0} ms |", build * 1e3);
+    outln!("| Embree 3 build, same mesh | {:.0} ms |", build * 1e3);
     let labels = [
         "closest hit, random rays",
         "closest hit, rays aimed inward",
@@ -265,7 +265,7 @@ fn embree_rates(
             })
         });
         let rate = rays.len() as f64 / s / 1e6;
-        println!(
+        outln!(
             "| Embree 3 {}, 1 thread | {rate:.2} Mrays/s (lumis/Embree {:.2}) |",
             labels[k],
             lumis_rate / rate

@@ -1,5 +1,8 @@
 //! The `lumis` binary: thin glue from arguments to a rendered image.
 
+#[macro_use]
+mod out;
+
 mod args;
 mod bench;
 mod display;

@@ -35,22 +35,27 @@ fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
         .mask
         .map(|m| lumis_render::load::options::crop_bounds((t.width, t.height), m));
     let m = compare(&t, &r, region).map_err(|e| anyhow::anyhow!("{}: {e}", a.test.display()))?;
-    println!("pixels   {}", m.pixels);
-    println!("MSE      {:.6e}", m.mse);
-    println!("RMSE     {:.6e}", m.rmse);
-    println!("relMSE   {:.6e}", m.rel_mse);
-    println!("MAE      {:.6e}", m.mae);
-    println!(
+    outln!("pixels   {}", m.pixels);
+    outln!("MSE      {:.6e}", m.mse);
+    outln!("RMSE     {:.6e}", m.rmse);
+    outln!("relMSE   {:.6e}", m.rel_mse);
+    outln!("MAE      {:.6e}", m.mae);
+    outln!(
         "mean     test {:.6} {:.6} {:.6}  reference {:.6} {:.6} {:.6}",
-        m.mean_test[0], m.mean_test[1], m.mean_test[2], m.mean_ref[0], m.mean_ref[1], m.mean_ref[2]
+        m.mean_test[0],
+        m.mean_test[1],
+        m.mean_test[2],
+        m.mean_ref[0],
+        m.mean_ref[1],
+        m.mean_ref[2]
     );
     let q = m.ratio();
-    println!("ratio    {:.4} {:.4} {:.4}", q[0], q[1], q[2]);
+    outln!("ratio    {:.4} {:.4} {:.4}", q[0], q[1], q[2]);
     if let Some(path) = &a.heatmap {
         let (lo, hi) =
             lumis_render::metrics::heatmap::write_heatmap(path, &t, &r, kind, a.heatmap_range)
                 .map_err(anyhow::Error::msg)?;
-        println!(
+        outln!(
             "heatmap  {} ({} error per pixel, log scale {lo:.2e} .. {hi:.2e})",
             path.display(),
             match kind {

@@ -43,3 +43,20 @@ pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).to_string()
 }
+
+/// Runs `lumis` with `args` in `dir`, its stdout a pipe that nobody reads
+/// any more (as `lumis ... | head -3` once `head` is done).
+pub fn lumis_to_closed_pipe(dir: &Path, args: &[&str]) -> Output {
+    let mut reader = Command::new("true")
+        .stdin(Stdio::piped())
+        .spawn()
+        .expect("run true");
+    let pipe = reader.stdin.take().unwrap();
+    reader.wait().unwrap();
+    Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::from(pipe))
+        .output()
+        .expect("run lumis")
+}
