@@ -1,6 +1,6 @@
 //! Deterministic workloads for measuring the BVH: a displaced ("bumpy") UV
-//! sphere and two ray sets. Shared by `benches/bvh.rs` and a future
-//! `lumis bench` command so both measure the same thing.
+//! sphere and two ray sets. Shared by `benches/bvh.rs`, `benches/scene.rs`
+//! and the `lumis bench` command so all measure the same thing.
 
 use super::Bvh;
 use crate::geometry::triangle::{intersect_triangle, RayShear};
