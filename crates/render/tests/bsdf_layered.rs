@@ -14,6 +14,7 @@
 mod common;
 
 use common::chi2::{self, Chi2Config};
+use common::sample_mean_and_se;
 use lumis_math::sampling::square_to_uniform_hemisphere;
 use lumis_math::{Pcg32, Rgb, Vec2, Vec3, PI};
 use lumis_render::bsdf::fresnel::fr_dielectric;
@@ -176,14 +177,6 @@ fn limit_values_equal_the_base() {
 // ---------------------------------------------------------------------------
 // sample() agrees with eval().
 
-/// Mean and standard error.
-fn stats(v: &[f64]) -> (f64, f64) {
-    let n = v.len() as f64;
-    let m = v.iter().sum::<f64>() / n;
-    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
-    (m, (var / n).sqrt())
-}
-
 /// Test functions of `wi`: everything, near the normal, one azimuthal half.
 type TestFn = (&'static str, fn(Vec3) -> f64);
 
@@ -213,7 +206,9 @@ fn both_estimates(l: &Layered, wo: Vec3, n: usize, seed: u64) -> Vec<((f64, f64)
             b[k].push(f * h(wi));
         }
     }
-    (0..3).map(|k| (stats(&a[k]), stats(&b[k]))).collect()
+    (0..3)
+        .map(|k| (sample_mean_and_se(&a[k]), sample_mean_and_se(&b[k])))
+        .collect()
 }
 
 #[test]
@@ -259,7 +254,7 @@ fn sample_eval_z_test_detects_a_mismatch() {
         let wi = square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
         b.push(dark.eval(wo, wi, RAD).g as f64 * wi.z as f64 * 2.0 * std::f64::consts::PI);
     }
-    let ((ma, sa), (mb, sb)) = (stats(&a), stats(&b));
+    let ((ma, sa), (mb, sb)) = (sample_mean_and_se(&a), sample_mean_and_se(&b));
     let z = (ma - mb) / (sa * sa + sb * sb).sqrt();
     assert!(z > 6.0, "mismatch not detected: z {z}");
 }
@@ -365,7 +360,7 @@ fn albedo(l: &Layered, wo: Vec3, n: usize) -> (f64, f64) {
                 .map_or(0.0, |s| (s.f.r * s.wi.z.abs() / s.pdf) as f64)
         })
         .collect();
-    stats(&v)
+    sample_mean_and_se(&v)
 }
 
 /// A white diffuse base under a smooth clear coat over a non-absorbing slab
@@ -438,7 +433,7 @@ fn eval_is_reciprocal_within_noise() {
             d.push((a.g - b.g) as f64);
             s += (a.g + b.g) as f64 / 2.0;
         }
-        let (m, se) = stats(&d);
+        let (m, se) = sample_mean_and_se(&d);
         let mean = s / d.len() as f64;
         println!("{name}: mean f {mean:.4}, mean f(wo,wi) - f(wi,wo) {m:.2e} ± {se:.2e}");
         assert!(m.abs() < 4.5 * se + 1e-6 * mean, "{name}: {m} ± {se}");

@@ -4,10 +4,10 @@
 //! found only by following delta samples) and a rough-coated rough-gold sphere
 //! (proportional sample densities, glossy recursion of the final gather).
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::load::Overrides;
-use support::*;
 
 fn scene(integrator: &str, maxdepth: u32) -> String {
     scene_with(integrator, maxdepth, WALL_AND_SPHERE)
@@ -44,37 +44,24 @@ Shape "trianglemesh" "point3 P" [ -4 0 -4  4 0 -4  4 0 4  -4 0 4 ] "integer indi
     )
 }
 
-/// Per-pixel means of a render and their variances.
-fn render(integrator: &str, maxdepth: u32, spp: u32) -> Vec<(f64, f64)> {
+/// A render's image mean and the variance of that mean.
+fn render(integrator: &str, maxdepth: u32, spp: u32) -> (f64, f64) {
     render_text(&scene(integrator, maxdepth), integrator, spp)
 }
 
-fn render_text(text: &str, integrator: &str, spp: u32) -> Vec<(f64, f64)> {
+fn render_text(text: &str, integrator: &str, spp: u32) -> (f64, f64) {
     let l = load(text, &Overrides::default());
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);
     let out = render_loaded(&l, spp, 3, 0);
     assert_eq!(out.bad_samples, 0, "{integrator}: NaN/inf samples");
-    out.film
-        .pixels
-        .iter()
-        .map(|p| {
-            let m = (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0;
-            (m, p.variance_of_mean().average() as f64)
-        })
-        .collect()
+    region_mean_and_var(&out.film, None)
 }
 
 /// Image means of two renders of the same scene and the standard error of
 /// their difference (pixels are independent; the image's own variation
 /// cancels).
-fn compare(a: &[(f64, f64)], b: &[(f64, f64)]) -> (f64, f64, f64) {
-    let n = a.len() as f64;
-    let (ma, mb) = (
-        a.iter().map(|p| p.0).sum::<f64>() / n,
-        b.iter().map(|p| p.0).sum::<f64>() / n,
-    );
-    let var = a.iter().chain(b).map(|p| p.1).sum::<f64>() / (n * n);
-    (ma, mb, var.sqrt())
+fn compare(a: (f64, f64), b: (f64, f64)) -> (f64, f64, f64) {
+    (a.0, b.0, (a.1 + b.1).sqrt())
 }
 
 /// `photon` agrees with `path` within the photon-map bias bound the other
@@ -84,7 +71,7 @@ fn compare(a: &[(f64, f64)], b: &[(f64, f64)]) -> (f64, f64, f64) {
 /// view), -12.7%.
 #[test]
 fn photon_agrees_with_path_on_coated_surfaces() {
-    let (p, ph, se) = compare(&render("path", 5, 2048), &render("photon", 5, 64));
+    let (p, ph, se) = compare(render("path", 5, 2048), render("photon", 5, 64));
     eprintln!(
         "path {p:.5}, photon {ph:.5} ({:+.2}%), se of difference {se:.5}",
         100.0 * (ph / p - 1.0)
@@ -101,8 +88,8 @@ fn photon_agrees_with_path_on_coated_surfaces() {
 #[test]
 fn direct_follows_the_coat_lobe() {
     let (p, d, se) = compare(
-        &render_text(&scene_with("path", 1, ""), "path", 512),
-        &render_text(&scene_with("direct", 1, ""), "direct", 512),
+        render_text(&scene_with("path", 1, ""), "path", 512),
+        render_text(&scene_with("direct", 1, ""), "direct", 512),
     );
     let z = (d - p) / se;
     eprintln!("path {p:.5}, direct {d:.5}, se {se:.5}, z {z:.2}");

@@ -1,11 +1,11 @@
 //! Bitterli's Cornell box and Veach's MIS scene (pbrt-v4 files) against
 //! Tungsten's converged renders.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::image_io::read_image;
 use lumis_render::load::{load_path, Overrides};
-use support::*;
 
 const BLOCK: u32 = 8;
 
@@ -137,18 +137,10 @@ fn matches_tungsten(
     }
     // 1. Mean per channel within 2%.
     for c in 0..3 {
-        let ours: f64 = out.film.pixels.iter().map(|p| p.mean[c]).sum::<f64>() / n as f64;
+        // With our Monte Carlo standard error of the image mean.
+        let (ours, se) = region_mean_and_se(&out.film, Some(c));
         let theirs: f64 = refd.iter().map(|p| p[c]).sum::<f64>() / n as f64;
         let rel = ours / theirs - 1.0;
-        // Our Monte Carlo standard error of the image mean.
-        let se = out
-            .film
-            .pixels
-            .iter()
-            .map(|p| p.variance_of_mean()[c] as f64)
-            .sum::<f64>()
-            .sqrt()
-            / n as f64;
         eprintln!(
             "channel {c}: lumis {ours:.5} tungsten {theirs:.5} ({:+.2}%, independent-sample standard error {:.2}%, an overestimate for sobol)",
             rel * 100.0,

@@ -4,12 +4,12 @@
 //! Regenerate the reference (after changing scenes/default.pbrt) with:
 //!   cargo test --release -p lumis-render --test default_scene -- --ignored make_reference
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
 use lumis_render::load::{Overrides, DEFAULT_SCENE};
 use std::path::PathBuf;
-use support::*;
 
 const RES: u32 = 48;
 const BLOCK: u32 = 8;

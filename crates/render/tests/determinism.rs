@@ -1,9 +1,9 @@
 //! Same scene, seed and sample count: bit-identical image, whatever the thread count.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::load::{Overrides, DEFAULT_SCENE};
-use support::*;
 
 #[test]
 fn image_is_independent_of_thread_count() {

@@ -3,14 +3,14 @@
 //! over the test scenes, instances included, and the same rendered image.
 #![cfg(feature = "embree")]
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_math::{Pcg32, Vec3};
 use lumis_render::geometry::Ray;
 use lumis_render::load::{load_text, DEFAULT_SCENE};
 use lumis_render::scene::Scene;
 use std::path::Path;
-use support::*;
 
 fn scene_file(rel: &str) -> String {
     std::fs::read_to_string(

@@ -5,22 +5,20 @@
 //! analytic radiance `a/pi ∫ L cos dω` (importance sampling, MIS and the
 //! light's transform together).
 
-mod support;
+mod common;
 
+use common::envmap::*;
+use common::*;
 use lumis_math::sampling::square_to_uniform_sphere;
 use lumis_math::{Pcg32, Rgb, Vec2, Vec3, PI};
 use lumis_render::light::Light;
 use std::path::Path;
-use support::envmap::*;
-use support::*;
-
-const HEADER: &str = r#"Sampler "independent" "integer pixelsamples" [ 4 ]
-PixelFilter "box"
-Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-"#;
 
 fn env_scene(light: &str, world: &str, camera: &str) -> String {
-    format!("{HEADER}{camera}\nCamera \"perspective\" \"float fov\" [ 30 ]\nWorldBegin\n{light}\n{world}\n")
+    format!(
+        "{}\n{camera}\nCamera \"perspective\" \"float fov\" [ 30 ]\nWorldBegin\n{light}\n{world}\n",
+        header(24)
+    )
 }
 
 fn image_light(path: &Path, extra: &str) -> String {
@@ -200,11 +198,7 @@ fn diffuse_plane_under_a_map_matches_its_irradiance() {
                 Rgb::new(p.mean[0] as f32, p.mean[1] as f32, p.mean[2] as f32).luminance() as f64
             })
             .collect();
-        let m = vals.iter().sum::<f64>() / vals.len() as f64;
-        let se = (vals.iter().map(|v| (v - m).powi(2)).sum::<f64>()
-            / (vals.len() as f64 - 1.0)
-            / vals.len() as f64)
-            .sqrt();
+        let (m, se) = sample_mean_and_se(&vals);
         let z = (m - expected) / (se.powi(2) + (0.002 * expected).powi(2)).sqrt();
         eprintln!("{name}: mean {m:.5} expected {expected:.5} se {se:.2e} z {z:.2}");
         assert_eq!(out.bad_samples, 0);

@@ -5,23 +5,22 @@
 //! `Le / (1 - a)` without a limit. Every pixel is an independent unbiased
 //! estimate, so the image mean must match within a few standard errors.
 
-mod support;
+mod common;
 
-use support::*;
+use common::*;
 
 fn sphere_scene(albedo: f32, le: f32, integrator: &str, maxdepth: u32) -> String {
     format!(
         r#"Integrator "{integrator}" "integer maxdepth" [ {maxdepth} ]
-Sampler "independent" "integer pixelsamples" [ 4 ]
-PixelFilter "box"
-Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+{}
 LookAt 0.1 0.2 0.3  1 0.5 -0.2  0 1 0
 Camera "perspective" "float fov" [ 80 ]
 WorldBegin
 AreaLightSource "diffuse" "rgb L" [ {le} {le} {le} ] "bool twosided" true
 Material "diffuse" "rgb reflectance" [ {albedo} {albedo} {albedo} ]
 Shape "sphere" "float radius" [ 3 ]
-"#
+"#,
+        header(24)
     )
 }
 
@@ -73,20 +72,7 @@ fn direct_gives_emission_plus_one_bounce() {
 /// A lossless closed object in a uniform environment of radiance 1 looks
 /// exactly like the environment: radiance 1 in every direction.
 fn lossless_object(material: &str, spp: u32, label: &str) {
-    let text = format!(
-        r#"Integrator "path" "integer maxdepth" [ 300 ]
-Sampler "independent" "integer pixelsamples" [ 4 ]
-PixelFilter "box"
-Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
-LookAt 0 0 5  0 0 0  0 1 0
-Camera "perspective" "float fov" [ 30 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-{material}
-Shape "sphere" "float radius" [ 1 ]
-"#
-    );
-    check(&text, spp, 1.0, label);
+    check(&white_furnace("path", material), spp, 1.0, label);
 }
 
 #[test]

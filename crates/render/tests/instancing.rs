@@ -2,11 +2,11 @@
 //! instanced scene gives the same hits as the same geometry written out
 //! (flattened) in world space.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_math::{Pcg32, Vec3};
 use lumis_render::geometry::{Prim, Ray};
-use support::*;
 
 /// A binary little-endian PLY height field of `nx * ny * 2` triangles.
 fn write_grid_ply(path: &std::path::Path, nx: usize, ny: usize) {

@@ -3,15 +3,14 @@
 //! emitted directions of `sample_le` against their density.
 
 mod common;
-mod support;
 
 use common::chi2::{self, sidak_alpha, Chi2Config};
+use common::envmap::{lumpy, write_env};
+use common::*;
 use lumis_math::{Frame, Vec3};
 use lumis_render::geometry::Ray;
 use lumis_render::light::Light;
 use lumis_render::load::LoadedScene;
-use support::envmap::{lumpy, write_env};
-use support::*;
 
 const TESTS: usize = 23;
 

@@ -1,7 +1,7 @@
 //! Loading pbrt-v4's `coateddiffuse` and `coatedconductor`: parameter names,
 //! defaults, the coat-relative conductor constants and located errors.
 
-mod support;
+mod common;
 
 use lumis_math::{Rgb, Vec2, Vec3};
 use lumis_render::bsdf::layered::Base;
@@ -10,7 +10,7 @@ use lumis_render::load::LoadedScene;
 use lumis_render::material::MaterialKind;
 use lumis_render::texture::TexCtx;
 
-use support::load_material as load;
+use common::load_material as load;
 
 /// The layered BSDF of the scene's first material.
 fn layered(l: &LoadedScene) -> lumis_render::bsdf::Layered {

@@ -2,7 +2,7 @@
 //! and lumis' `"string distribution"` extension (Trowbridge-Reitz or
 //! Beckmann), with located errors.
 
-mod support;
+mod common;
 
 use lumis_math::{Vec2, Vec3};
 use lumis_render::bsdf::microfacet::{Microfacet, MicrofacetModel};
@@ -10,7 +10,7 @@ use lumis_render::bsdf::Bsdf;
 use lumis_render::load::LoadedScene;
 use lumis_render::texture::TexCtx;
 
-use support::load_material as load;
+use common::load_material as load;
 
 /// The microfacet distribution of the scene's first material.
 fn microfacet(l: &LoadedScene) -> Microfacet {

@@ -2,11 +2,11 @@
 //! pbrt-v4 versions of the pbrt book's caustic-glass scene give the same
 //! geometry and the same spot light.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::light::Light;
 use lumis_render::load::{load_path, LoadedScene, Overrides};
-use support::*;
 
 fn triangles(l: &LoadedScene) -> usize {
     l.scene.world.prims.len()

@@ -8,13 +8,13 @@
 //! Regenerate the references with:
 //!   cargo test -p lumis-render --test photon_consistency -- --ignored make_references
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::film::Film;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
 use lumis_render::load::{load_path, Overrides};
 use std::path::PathBuf;
-use support::*;
 
 /// The caustic region of the 64x64 image (fractions x0, x1, y0, y1).
 const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
@@ -36,24 +36,6 @@ fn ov(integrator: &str) -> Overrides {
     let mut o = Overrides::default();
     o.crop_from(CROP, "test").integrator(integrator);
     o
-}
-
-/// Region mean (channel average) and its standard error from per-pixel variances.
-fn region(film: &Film) -> (f64, f64) {
-    let n = film.pixels.len() as f64;
-    let mean = film
-        .pixels
-        .iter()
-        .map(|p| (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0)
-        .sum::<f64>()
-        / n;
-    let var: f64 = film
-        .pixels
-        .iter()
-        .map(|p| p.variance_of_mean().average() as f64)
-        .sum::<f64>()
-        / (n * n);
-    (mean, var.sqrt())
 }
 
 #[test]
@@ -95,7 +77,7 @@ fn photon_region(name: &str, mode: &str, caustic_photons: u64, spp: u32) -> (f64
     o.integrator_param("string caustics", &format!("\"{mode}\""));
     o.integrator_param("integer causticphotons", &caustic_photons.to_string());
     let l = load_path(&scene_path(name), &o).unwrap();
-    region(&render_loaded(&l, spp, 7, 0).film)
+    region_mean_and_se(&render_loaded(&l, spp, 7, 0).film, None)
 }
 
 fn check_scene(name: &str, spp: u32) {
@@ -178,7 +160,7 @@ fn aimed_caustic_photons_match_path() {
             o.integrator_param("bool aimcaustics", &aim.to_string());
             let l = load_path(&scene_path(name), &o).unwrap();
             let out = render_loaded(&l, 64, 7, 0);
-            let (m, se) = region(&out.film);
+            let (m, se) = region_mean_and_se(&out.film, None);
             let err = (m - r) / r;
             let noise = (se * se + r_se * r_se).sqrt() / r;
             eprintln!("aim {aim} {mode}: {m:.4} ± {se:.4} ({:+.2}%)", err * 100.0);

@@ -1,7 +1,7 @@
 //! Photon emission from every light type: the flux of the photons stored at
 //! their first hit equals the light's power reaching the receiver.
 
-mod support;
+mod common;
 
 use lumis_math::PI;
 use lumis_render::integrator::photon::trace::{trace_photons, MapKind};
@@ -9,7 +9,7 @@ use std::sync::atomic::AtomicBool;
 
 /// Photon passes here are never interrupted.
 static NEVER: AtomicBool = AtomicBool::new(false);
-use support::*;
+use common::*;
 
 const N: u64 = 200_000;
 
@@ -71,7 +71,7 @@ fn distant_and_infinite_lights_emit_their_power() {
 /// a few percent.
 #[test]
 fn image_infinite_light_emits_its_power() {
-    use support::envmap::{lumpy, write_env};
+    use common::envmap::{lumpy, write_env};
     for (name, w, h) in [("ph-ea.exr", 32, 32), ("ph-ll.exr", 64, 32)] {
         let path = write_env(name, w, h, lumpy(w, h));
         let world = format!(
@@ -100,7 +100,7 @@ fn image_infinite_light_emits_its_power() {
 /// sphere: every photon lands once, carrying the power set by `power`.
 #[test]
 fn goniometric_light_emits_its_power() {
-    use support::envmap::{lumpy, write_env};
+    use common::envmap::{lumpy, write_env};
     let path = write_env("ph-gonio.exr", 16, 16, lumpy(16, 16));
     check(
         "goniometric",
@@ -115,7 +115,7 @@ fn goniometric_light_emits_its_power() {
 
 /// Writes a `w` x `h` image of the given texels (row 0 at the top).
 fn image(name: &str, w: u32, h: u32, texels: &[[f32; 3]]) -> std::path::PathBuf {
-    support::envmap::write_env(name, w, h, |x, y| {
+    common::envmap::write_env(name, w, h, |x, y| {
         let t = texels[(y * w + x) as usize];
         lumis_math::Rgb::new(t[0], t[1], t[2])
     })

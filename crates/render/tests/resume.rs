@@ -3,8 +3,9 @@
 //! for bit, for `path` and for `photon` (whose maps are rebuilt from the seed).
 //! Also: an injected NaN sample is dropped, counted and located.
 
-mod support;
+mod common;
 
+use common::load;
 use lumis_render::checkpoint::Checkpoint;
 use lumis_render::film::Film;
 use lumis_render::integrator::{
@@ -12,7 +13,6 @@ use lumis_render::integrator::{
 };
 use lumis_render::load::{LoadedScene, Overrides, DEFAULT_SCENE};
 use std::sync::atomic::{AtomicBool, Ordering};
-use support::load;
 
 fn scene(integrator: &str) -> LoadedScene {
     let mut ov = Overrides::default();
@@ -65,7 +65,7 @@ fn assert_same_bits(a: &Film, b: &Film) {
 
 fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
     let l = scene(integrator);
-    let s = support::settings(&l, spp, 11, 2);
+    let s = common::settings(&l, spp, 11, 2);
     let full = run(&l, &s, None, None);
     assert_eq!(full.spp, spp);
     let part = run(&l, &s, Some(stop), None);
@@ -104,7 +104,7 @@ fn injected_nan_is_dropped_counted_and_located() {
     let l = scene("path");
     let s = RenderSettings {
         inject_nan: Some((5, 3, 1)),
-        ..support::settings(&l, 3, 0, 2)
+        ..common::settings(&l, 3, 0, 2)
     };
     let out = run(&l, &s, None, None);
     assert_eq!(out.bad_samples, 1);

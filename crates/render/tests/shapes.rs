@@ -1,11 +1,11 @@
 //! The shapes of the scene-loading issue through the whole load: hits
 //! against analytic answers.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_math::Vec3;
 use lumis_render::geometry::Ray;
-use support::*;
 
 fn scene(shapes: &str) -> lumis_render::load::LoadedScene {
     let text = format!("Camera \"perspective\"\nWorldBegin\nLightSource \"distant\"\n{shapes}\n");

@@ -2,10 +2,10 @@
 //! with `path`, and warns about nothing the scene-loading issue says must
 //! work: every warning must be one of the explained exceptions below.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::load::{load_path, Overrides};
-use support::*;
 
 const SCENES: &[&str] = &[
     "bitterli-cornell-box/scene-v4.pbrt",

@@ -4,8 +4,9 @@
 //! named metals to a per-channel fit. Expected values are computed here
 //! from the spectra, independently of the loader's conversion code.
 
-mod support;
+mod common;
 
+use common::{load, mean_and_se, render_loaded};
 use lumis_math::spectrum::{cmf, fresnel_conductor, named, planck, NAMED};
 use lumis_math::{Rgb, PI};
 use lumis_render::light::Light;
@@ -13,7 +14,6 @@ use lumis_render::load::{load_text, LoadedScene, Overrides};
 use lumis_render::material::{ConductorSpec, MaterialKind};
 use lumis_render::texture::TexRgb;
 use std::path::Path;
-use support::{load, mean_and_se, render_loaded};
 
 const HEAD: &str = "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 10 ]\n\
 Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
@@ -272,7 +272,7 @@ fn gold_reflects_head_on_what_its_tables_give() {
 
 #[test]
 fn killeroo_gold_spd_files_are_the_named_gold() {
-    let Some(dir) = support::shared_scene("pbrt-v4-killeroos") else {
+    let Some(dir) = common::shared_scene("pbrt-v4-killeroos") else {
         return;
     };
     let body = format!(

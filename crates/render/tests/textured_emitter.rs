@@ -7,12 +7,12 @@
 //! of the image are compared separately (Z-tests against the pixels' own
 //! variance), so a mirrored or colour-swapped image fails.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_math::{Vec2, Vec3, PI};
 use lumis_render::film::Film;
 use lumis_render::load::LoadedScene;
-use support::*;
 
 const A: [f32; 3] = [0.2, 0.4, 1.0];
 const B: [f32; 3] = [3.0, 2.0, 0.5];
@@ -46,7 +46,7 @@ fn irradiance(c: usize, x: f64, y: f64) -> f64 {
 }
 
 fn scene(integrator: &str, spp: u32, camera: &str, floor: bool) -> LoadedScene {
-    let img = support::envmap::write_env("textured-emitter.exr", 2, 1, |x, _| {
+    let img = common::envmap::write_env("textured-emitter.exr", 2, 1, |x, _| {
         let t = if x == 0 { A } else { B };
         lumis_math::Rgb::new(t[0], t[1], t[2])
     });
@@ -162,7 +162,7 @@ fn textured_emitter_lights_a_diffuse_floor() {
 /// located error too.
 #[test]
 fn textured_emitter_input_errors() {
-    let img = support::envmap::write_env("textured-emitter-err.exr", 2, 1, |_, _| {
+    let img = common::envmap::write_env("textured-emitter-err.exr", 2, 1, |_, _| {
         lumis_math::Rgb::WHITE
     });
     for (light, needle) in [

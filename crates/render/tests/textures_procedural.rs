@@ -5,14 +5,14 @@
 //! unknown parameters are reported at their location; `ptex` is a located
 //! warning.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_math::{Rgb, Vec3};
 use lumis_render::bsdf::TransportMode;
 use lumis_render::geometry::Ray;
 use lumis_render::load::{load_text, LoadedScene};
 use std::path::Path;
-use support::*;
 
 /// A unit square in z = 0 (uv = xy), lit from above, with `body` before it.
 fn scene(body: &str) -> String {

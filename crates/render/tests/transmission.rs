@@ -3,18 +3,10 @@
 //! a thin sheet, and `photon` against `path` where light reaches a floor only
 //! by diffuse transmission.
 
-mod support;
+mod common;
 
+use common::*;
 use lumis_render::bsdf::ThinDielectric;
-use support::*;
-
-const HEADER: &str = r#"Sampler "independent" "integer pixelsamples" [ 4 ]
-PixelFilter "box"
-"#;
-
-fn film(res: u32) -> String {
-    format!(r#"Film "rgb" "integer xresolution" [ {res} ] "integer yresolution" [ {res} ]"#)
-}
 
 /// A horizontal square of half-size `h` at height `z` (normal +z).
 fn quad(z: f32, h: f32) -> String {
@@ -36,18 +28,7 @@ fn check_z(label: &str, mean: f64, se: f64, expected: f64, bias: f64) {
 /// A closed lossless object in a uniform environment of radiance 1 looks
 /// like the environment, whichever integrator renders it.
 fn furnace(material: &str, integrator: &str, spp: u32, bias: f64, label: &str) {
-    let text = format!(
-        r#"Integrator "{integrator}" "integer maxdepth" [ 300 ]
-{HEADER}{}
-LookAt 0 0 5  0 0 0  0 1 0
-Camera "perspective" "float fov" [ 30 ]
-WorldBegin
-LightSource "infinite" "rgb L" [ 1 1 1 ]
-{material}
-Shape "sphere" "float radius" [ 1 ]
-"#,
-        film(24)
-    );
+    let text = white_furnace(integrator, material);
     let l = load(&text, &Default::default());
     assert!(l.warnings.is_empty(), "{label}: {:?}", l.warnings);
     let out = render_loaded(&l, spp, 7, 0);
@@ -86,7 +67,7 @@ fn diffuse_transmission_sheet_seen_from_both_sides() {
     let scene = |material: &str, eye_z: f32, integrator: &str| {
         format!(
             r#"Integrator "{integrator}" "integer maxdepth" [ 5 ]
-{HEADER}{}
+{}
 LookAt 0.2 0.1 {eye_z}  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 20 ]
 WorldBegin
@@ -94,7 +75,7 @@ LightSource "distant" "point3 from" [ 0.3 0.2 1 ] "point3 to" [ 0 0 0 ] "rgb L" 
 {material}
 {}
 "#,
-            film(8),
+            header(8),
             quad(0.0, 5.0)
         )
     };
@@ -143,7 +124,7 @@ fn thin_dielectric_caustic_under_a_spot_light() {
     let text = format!(
         r#"Integrator "photon" "integer maxdepth" [ 5 ] "integer photons" [ 0 ]
   "integer causticphotons" [ 1000000 ] "integer nearest" [ 200 ] "float maxradius" [ 0.05 ]
-{HEADER}{}
+{}
 LookAt 0 0 0.5  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 4 ]
 WorldBegin
@@ -156,7 +137,7 @@ AttributeEnd
 Material "diffuse" "rgb reflectance" [ {a} {a} {a} ]
 {}
 "#,
-        film(16),
+        header(16),
         quad(1.0, 5.0),
         quad(0.0, 5.0)
     );
@@ -185,7 +166,7 @@ fn photon_matches_path_under_a_diffuse_transmission_sheet() {
     let scene = |integrator: &str| {
         format!(
             r#"Integrator "{integrator}" "integer maxdepth" [ 5 ]
-{HEADER}{}
+{}
 LookAt 0 0 1  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 60 ]
 WorldBegin
@@ -202,7 +183,7 @@ AttributeEnd
 Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
 {}
 "#,
-            film(12),
+            header(12),
             quad(2.0, 3.0),
             quad(0.0, 3.0)
         )
@@ -302,7 +283,7 @@ fn thin_sheet_caustic_modes_match_path() {
         format!(
             r#"Integrator "{integrator}" "integer maxdepth" [ 6 ] "string caustics" "{caustics}"
   "integer causticphotons" [ 400000 ]
-{HEADER}{}
+{}
 LookAt 0 0 1  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 50 ]
 WorldBegin
@@ -318,7 +299,7 @@ AttributeEnd
 Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
 {}
 "#,
-            film(12),
+            header(12),
             quad(2.0, 3.0),
             quad(0.0, 3.0)
         )

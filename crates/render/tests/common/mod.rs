@@ -1,3 +1,142 @@
-//! Helpers shared by the integration tests of lumis-render.
+//! Helpers shared by the integration tests of lumis-render: scene text,
+//! loading and rendering, image statistics; chi-square tests of sampling
+//! routines (`chi2`) and environment maps written to disk (`envmap`).
+#![allow(dead_code)]
 
 pub mod chi2;
+pub mod envmap;
+
+use lumis_render::film::Film;
+use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
+use lumis_render::load::{load_text, LoadedScene, Overrides};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+
+pub fn load(text: &str, ov: &Overrides) -> LoadedScene {
+    load_text(text, "test.pbrt", Path::new("."), ov)
+        .unwrap_or_else(|e| panic!("scene failed to load:\n{e}"))
+}
+
+/// A point light over a sphere of `material` (scene lines 5 and on), as
+/// `s.pbrt`: errors come back as text, for checking their locations.
+pub fn load_material(material: &str) -> Result<LoadedScene, String> {
+    let text = format!(
+        "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
+         Camera \"perspective\"\nWorldBegin\nLightSource \"point\" \"rgb I\" [1 1 1]\n\
+         {material}\nShape \"sphere\"\n"
+    );
+    load_text(&text, "s.pbrt", Path::new("."), &Overrides::default()).map_err(|e| e.to_string())
+}
+
+pub fn settings(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderSettings {
+    l.options.render_settings(spp, seed, threads)
+}
+
+pub fn render_loaded(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> RenderOutcome {
+    render(
+        &l.scene,
+        &l.options.integrator,
+        &settings(l, spp, seed, threads),
+        &|_| {},
+        &AtomicBool::new(false),
+    )
+}
+
+/// The preamble of the small analytic scenes: an independent sampler at 4
+/// spp, a box filter and a `res` x `res` RGB film (no final newline).
+pub fn header(res: u32) -> String {
+    format!(
+        r#"Sampler "independent" "integer pixelsamples" [ 4 ]
+PixelFilter "box"
+Film "rgb" "integer xresolution" [ {res} ] "integer yresolution" [ {res} ]"#
+    )
+}
+
+/// A white furnace: a unit sphere of `material` in a uniform environment of
+/// radiance 1, rendered by `integrator` (maxdepth 300) at 24x24. A closed
+/// lossless object looks exactly like the environment: radiance 1 everywhere.
+pub fn white_furnace(integrator: &str, material: &str) -> String {
+    format!(
+        r#"Integrator "{integrator}" "integer maxdepth" [ 300 ]
+{}
+LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 30 ]
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+{material}
+Shape "sphere" "float radius" [ 1 ]
+"#,
+        header(24)
+    )
+}
+
+/// Mean of `vals` and its standard error from their spread (the values are
+/// independent estimates).
+pub fn sample_mean_and_se(vals: &[f64]) -> (f64, f64) {
+    let n = vals.len() as f64;
+    let mean = vals.iter().sum::<f64>() / n;
+    let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+/// Mean over all pixels and channels, and its standard error estimated from
+/// the spread of per-pixel means (pixels are independent estimates).
+pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
+    let vals: Vec<f64> = film
+        .pixels
+        .iter()
+        .map(|p| match channel {
+            Some(c) => p.mean[c],
+            None => (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0,
+        })
+        .collect();
+    sample_mean_and_se(&vals)
+}
+
+/// Mean over the film's pixels (of `channel`, or of the channel average)
+/// and the variance of that mean from the pixels' own variances of their
+/// means: the square of its standard error.
+pub fn region_mean_and_var(film: &Film, channel: Option<usize>) -> (f64, f64) {
+    let n = film.pixels.len() as f64;
+    let (mut sum, mut var) = (0.0, 0.0);
+    for p in &film.pixels {
+        let v = p.variance_of_mean();
+        let (m, v) = match channel {
+            Some(c) => (p.mean[c], v[c] as f64),
+            None => (
+                (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0,
+                v.average() as f64,
+            ),
+        };
+        sum += m;
+        var += v;
+    }
+    (sum / n, var / (n * n))
+}
+
+/// [`region_mean_and_var`] with the standard error.
+pub fn region_mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
+    let (mean, var) = region_mean_and_var(film, channel);
+    (mean, var.sqrt())
+}
+
+pub fn independent() -> Overrides {
+    let mut o = Overrides::default();
+    o.sampler("independent");
+    o
+}
+
+/// `../shared/scenes/<rel>` if present. Absent: prints a notice and returns
+/// None, unless LUMIS_REQUIRE_SHARED=1, which makes it a failure.
+pub fn shared_scene(rel: &str) -> Option<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
+    let p = root.join(rel);
+    if p.exists() {
+        return Some(p);
+    }
+    if std::env::var("LUMIS_REQUIRE_SHARED").as_deref() == Ok("1") {
+        panic!("LUMIS_REQUIRE_SHARED=1 but {} is missing", p.display());
+    }
+    eprintln!("skipping: ../shared/scenes not found ({})", p.display());
+    None
+}
