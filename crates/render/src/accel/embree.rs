@@ -67,7 +67,12 @@ fn embree_ray(r: &Ray) -> embree3::Ray {
     embree3::Ray::segment(r.o.to_array(), r.d.to_array(), 0.0, r.tmax)
 }
 
-fn build_level(device: &Device, shapes: &Arc<Shapes>, level: &PrimBvh) -> Level {
+fn build_level(
+    device: &Device,
+    shapes: &Shapes,
+    analytic_shapes: &Arc<Shapes>,
+    level: &PrimBvh,
+) -> Level {
     let mut scene = device.create_scene().expect("embree scene");
     let mut geoms = Vec::new();
     let mut verts: Vec<[f32; 3]> = Vec::new();
@@ -111,7 +116,7 @@ fn build_level(device: &Device, shapes: &Arc<Shapes>, level: &PrimBvh) -> Level 
     if !analytic.is_empty() {
         let data = Arc::new(Analytic {
             prims: analytic,
-            shapes: shapes.clone(),
+            shapes: analytic_shapes.clone(),
         });
         let mut g = device
             .create_geometry(GeometryKind::USER)
@@ -191,20 +196,26 @@ impl Level {
 
 impl EmbreeAccel {
     /// Builds Embree scenes for the world level and the instanced objects
-    /// (the shapes are copied for Embree's callbacks).
+    /// (the analytic shapes are copied for Embree's callbacks; the meshes'
+    /// triangles go into Embree's own buffers, in the levels' slot order).
     pub fn build(shapes: &Shapes, world: &PrimBvh, instances: &Instances) -> EmbreeAccel {
         let device = Device::new().expect("embree device");
-        let shapes = Arc::new(shapes.clone());
+        let analytic = Arc::new(Shapes {
+            meshes: Vec::new(),
+            spheres: shapes.spheres.clone(),
+            disks: shapes.disks.clone(),
+            cylinders: shapes.cylinders.clone(),
+        });
         let objects: Vec<Level> = instances
             .objects
             .iter()
             .map(|o| {
-                let mut l = build_level(&device, &shapes, o);
+                let mut l = build_level(&device, shapes, &analytic, o);
                 l.scene.commit();
                 l
             })
             .collect();
-        let mut top = build_level(&device, &shapes, world);
+        let mut top = build_level(&device, shapes, &analytic, world);
         let mut instance_of_geom = Vec::new();
         let mut instance_geoms = Vec::new();
         for (i, inst) in instances.instances.iter().enumerate() {
