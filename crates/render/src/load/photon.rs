@@ -4,7 +4,7 @@
 //! [`crate::integrator::photon::PARAMS`].
 
 use crate::integrator::photon::{check_memory, AlphaMode, CausticMode, Heuristic, Kernel};
-use crate::integrator::photon::{PhotonSettings, PARAMS};
+use crate::integrator::photon::{PhotonSettings, Progressive, PARAMS};
 use lumis_scene::{Diagnostic, Entity, ParamSpec};
 
 fn choice<T>(
@@ -77,6 +77,9 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.kernel = choice(e, "kernel", "none", "kernel", kernel)?;
     s.radiance_photons = p.get_bool("radiancephotons", s.radiance_photons)?;
     s.aim_caustics = p.get_bool("aimcaustics", s.aim_caustics)?;
+    if p.get_bool("progressive", false)? {
+        s.progressive = Some(progressive(e)?);
+    }
     if !(s.max_radius >= 0.0) {
         return Err(Diagnostic::error(
             &p.loc_of("maxradius").unwrap_or(e.loc.clone()),
@@ -91,6 +94,41 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
         Diagnostic::error(&p.loc_of(which).unwrap_or(e.loc.clone()), m)
     })?;
     Ok(s)
+}
+
+/// The progressive mode's settings `e` asks for.
+fn progressive(e: &Entity) -> Result<Progressive, Diagnostic> {
+    let p = &e.params;
+    let d = Progressive::default();
+    let bad = |name: &str, what: String| {
+        Diagnostic::error(&p.loc_of(name).unwrap_or(e.loc.clone()), what)
+    };
+    let spp = p.get_int("iterationspp", d.iteration_spp as i32)?;
+    if spp < 1 {
+        return Err(bad(
+            "iterationspp",
+            format!("`iterationspp` must be >= 1, found {spp}"),
+        ));
+    }
+    let shrink = p.get_float("shrink", d.shrink)?;
+    if !(shrink > 0.0 && shrink <= 1.0) {
+        return Err(bad(
+            "shrink",
+            format!("`shrink` must be in (0, 1], found {shrink}"),
+        ));
+    }
+    let r0 = p.get_float("initialradius", d.initial_radius)?;
+    if !(r0 >= 0.0) {
+        return Err(bad(
+            "initialradius",
+            format!("`initialradius` must be >= 0, found {r0}"),
+        ));
+    }
+    Ok(Progressive {
+        iteration_spp: spp as u32,
+        shrink,
+        initial_radius: r0,
+    })
 }
 
 /// Parameter names of `Integrator "photon"`, for the unused-parameter report.

@@ -337,7 +337,18 @@ fn caustic_photons(
     SCRATCH.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
-        let r2 = map.knn(x.geom.p, s.nearest, ctx.maps.max_radius, &mut found);
+        // Progressive iterations: every photon in a disc fixed beforehand
+        // (its count varies); otherwise the `nearest` ones.
+        let (r2, skip_boundary) = match ctx.maps.caustic_radius {
+            Some(r) => {
+                map.within(x.geom.p, r, &mut found);
+                (r * r, false)
+            }
+            None => (
+                map.knn(x.geom.p, s.nearest, ctx.maps.max_radius, &mut found),
+                true,
+            ),
+        };
         let delta_a = PI * r2;
         let alpha = alpha.effective(delta_a);
         if found.is_empty() || r2 <= 0.0 {
@@ -345,7 +356,7 @@ fn caustic_photons(
         }
         let n = map.emitted() as f64;
         let r = r2.sqrt();
-        let skip = boundary_photon(&found, s.nearest, r2);
+        let skip = boundary_photon(&found, s.nearest, r2).filter(|_| skip_boundary);
         let mut sum = Rgb::BLACK;
         for (j, &(i, d2)) in found.iter().enumerate() {
             if Some(j) == skip {

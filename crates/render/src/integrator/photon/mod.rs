@@ -5,12 +5,14 @@
 //! Orchestration is in `run.rs` (the photon pass before the camera passes,
 //! `alpha` between them) and [`PhotonMaps::build`]; per-path tracing in
 //! `trace.rs` (photons) and `gather.rs` (camera paths); settings here;
-//! weights in `weights.rs`.
+//! weights in `weights.rs`; the progressive mode's iteration schedule and
+//! shrinking radius in `progressive.rs`.
 
 pub mod aim;
 pub mod gather;
 pub mod map;
 pub mod photon;
+pub mod progressive;
 pub mod radiance;
 pub mod run;
 pub mod trace;
@@ -19,6 +21,7 @@ pub mod weights;
 use crate::scene::Scene;
 use lumis_scene::ParamSpec;
 use map::PhotonMap;
+pub use progressive::Progressive;
 use radiance::RadiancePhotons;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
@@ -57,6 +60,9 @@ pub struct PhotonSettings {
     /// Emit caustic photons only towards perfectly specular shapes
     /// (see `aim.rs`); their fluxes then differ and q_1 uses each photon's own.
     pub aim_caustics: bool,
+    /// Render in iterations, each with fresh maps and a shrinking caustic
+    /// radius (`None`: one pair of maps for the whole render).
+    pub progressive: Option<Progressive>,
 }
 
 impl Default for PhotonSettings {
@@ -74,6 +80,7 @@ impl Default for PhotonSettings {
             kernel: Kernel::None,
             radiance_photons: true,
             aim_caustics: false,
+            progressive: None,
         }
     }
 }
@@ -108,6 +115,10 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("string", "kernel", "kernel", "none|cone", "caustic density-estimation kernel"),
     spec("bool", "radiancephotons", "radiance-photons", "true|false", "read the global map through precomputed radiance photons"),
     spec("bool", "aimcaustics", "aim-caustics", "true|false", "emit caustic photons only towards perfectly specular shapes"),
+    spec("bool", "progressive", "progressive", "true|false", "render in iterations, each tracing fresh photons (`photons` and `causticphotons` per iteration) with a caustic radius that shrinks from one to the next"),
+    spec("integer", "iterationspp", "iteration-spp", "S", "progressive: samples per pixel rendered with each iteration's maps"),
+    spec("float", "shrink", "shrink", "A", "progressive: radius sequence r_{i+1}^2 = r_i^2 (i + A) / (i + 1), 0 < A <= 1"),
+    spec("float", "initialradius", "initial-radius", "R", "progressive: caustic radius of the first iteration (0: the median k-NN radius of the first iteration's caustic photons)"),
 ];
 
 /// Bytes per stored photon plus kd-tree overhead, and per global photon the
@@ -160,6 +171,11 @@ pub struct PhotonStats {
     pub build_time: Duration,
     pub radiance_time: Duration,
     pub memory_bytes: usize,
+    /// Progressive iterations begun (0 without the progressive mode); the
+    /// counts and times are then sums over them and the memory their peak.
+    pub iterations: u32,
+    /// Progressive: the caustic radius of the latest iteration.
+    pub caustic_radius: f32,
 }
 
 /// Everything the camera pass needs from the photon pass.
@@ -172,6 +188,9 @@ pub struct PhotonMaps {
     pub max_radius: f32,
     /// Set when caustic photons were aimed: q_1 then uses per-photon fluxes.
     pub targets: Option<aim::Targets>,
+    /// The caustic query's fixed radius (progressive iterations); `None`:
+    /// the `nearest` photons within `max_radius`.
+    pub caustic_radius: Option<f32>,
     pub stats: PhotonStats,
 }
 
@@ -243,6 +262,8 @@ impl PhotonMaps {
             build_time,
             radiance_time,
             memory_bytes,
+            iterations: 0,
+            caustic_radius: 0.0,
         };
         Some(PhotonMaps {
             global,
@@ -251,6 +272,7 @@ impl PhotonMaps {
             phi,
             max_radius,
             targets,
+            caustic_radius: None,
             stats,
         })
     }

@@ -1,0 +1,166 @@
+//! The progressive mode (METHOD.md §7; Knaus & Zwicker 2011): the render
+//! runs in iterations; iteration `i` traces fresh photons from a random
+//! stream keyed by `(seed, i)` only, renders `S` samples per pixel with its
+//! maps and frees them. Its caustic estimate uses a disc of radius `r_i`
+//! fixed before the iteration, `r_{i+1}^2 = r_i^2 (i + a) / (i + 1)`, so bias
+//! and variance both vanish as iterations accumulate. This module holds the
+//! settings, the radius sequence, the per-iteration seed, the rule for `r_0`
+//! and the iteration state a checkpoint stores; `run.rs` drives it.
+
+use super::map::PhotonMap;
+use rayon::prelude::*;
+
+/// Settings of the progressive mode.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progressive {
+    /// `S`: samples per pixel rendered with each iteration's maps.
+    pub iteration_spp: u32,
+    /// `a` of the radius sequence, in (0, 1].
+    pub shrink: f32,
+    /// `r_0`; 0: [`initial_radius2`] of the first iteration's caustic map.
+    pub initial_radius: f32,
+}
+
+impl Default for Progressive {
+    fn default() -> Self {
+        Progressive {
+            iteration_spp: 1,
+            shrink: 2.0 / 3.0,
+            initial_radius: 0.0,
+        }
+    }
+}
+
+/// `r_{i+1}^2` from `r_i^2` (Knaus & Zwicker 2011, eq. 15).
+pub fn next_radius2(r2: f64, i: u64, a: f64) -> f64 {
+    r2 * (i as f64 + a) / (i as f64 + 1.0)
+}
+
+/// The seed of iteration `i`'s photon streams: depends on `(seed, i)` only.
+pub fn iteration_seed(seed: u64, i: u64) -> u64 {
+    mix(seed ^ mix(i.wrapping_add(1)))
+}
+
+/// SplitMix64's finaliser.
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Caustic photons sampled for the `r_0` rule.
+const RADIUS_SAMPLES: usize = 1024;
+
+/// The rule for `r_0^2` when no radius is given: the median, over (up to
+/// 1024, evenly strided) stored caustic photons, of the squared distance to
+/// their `k`-th nearest neighbour within `max_radius`, i.e. the radius the
+/// single-map estimate would use where the photons are. `max_radius^2` for
+/// an empty map. Deterministic: the queries and the median do not depend on
+/// thread timing.
+pub fn initial_radius2(map: &PhotonMap, k: usize, max_radius: f32) -> f64 {
+    let n = map.len();
+    if n == 0 {
+        return (max_radius as f64).powi(2);
+    }
+    let stride = n.div_ceil(RADIUS_SAMPLES);
+    let mut r2: Vec<f32> = (0..n)
+        .step_by(stride)
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .map_init(Vec::new, |found, i| {
+            map.knn(map.photon(i as u32).pos(), k, max_radius, found)
+        })
+        .collect();
+    r2.sort_by(f32::total_cmp);
+    r2[r2.len() / 2] as f64
+}
+
+/// Where a progressive render is, as a checkpoint stores it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IterState {
+    /// The current iteration `i`.
+    pub index: u64,
+    /// Samples per pixel done when it began, and done so far.
+    pub start_spp: u32,
+    pub spp_done: u32,
+    /// `r_i^2`; 0 until the first iteration's maps set it.
+    pub r2: f64,
+}
+
+impl IterState {
+    pub const BYTES: usize = 8 + 4 + 4 + 8;
+
+    pub fn encode(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.index.to_le_bytes());
+        out.extend_from_slice(&self.start_spp.to_le_bytes());
+        out.extend_from_slice(&self.spp_done.to_le_bytes());
+        out.extend_from_slice(&self.r2.to_bits().to_le_bytes());
+    }
+
+    pub fn decode(b: &[u8]) -> Option<IterState> {
+        if b.len() != Self::BYTES {
+            return None;
+        }
+        let u32_at = |i: usize| u32::from_le_bytes(b[i..i + 4].try_into().unwrap());
+        let u64_at = |i: usize| u64::from_le_bytes(b[i..i + 8].try_into().unwrap());
+        Some(IterState {
+            index: u64_at(0),
+            start_spp: u32_at(8),
+            spp_done: u32_at(12),
+            r2: f64::from_bits(u64_at(16)),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radius_sequence_follows_knaus_zwicker() {
+        // r_n^2 / r_0^2 = prod_{i<n} (i + a) / (i + 1) = Gamma(n + a) / (Gamma(a) n!).
+        let a = 2.0 / 3.0;
+        let mut r2 = 1.0;
+        for i in 0..3 {
+            r2 = next_radius2(r2, i, a);
+        }
+        let expected = (a / 1.0) * ((1.0 + a) / 2.0) * ((2.0 + a) / 3.0);
+        assert!((r2 - expected).abs() < 1e-15);
+        // a = 1 keeps the radius.
+        assert_eq!(next_radius2(0.25, 7, 1.0), 0.25);
+        // For large n the ratio tends to n^(a - 1) / Gamma(a) (Gamma(2/3) = 1.354118).
+        let mut r2 = 1.0;
+        for i in 0..10_000 {
+            r2 = next_radius2(r2, i, a);
+        }
+        let asymptote = 10_000f64.powf(a - 1.0) / 1.354_117_939;
+        assert!((r2 / asymptote - 1.0).abs() < 1e-3, "{r2} vs {asymptote}");
+    }
+
+    #[test]
+    fn iteration_seeds_differ_and_depend_on_seed_and_index_only() {
+        let s: Vec<u64> = (0..100).map(|i| iteration_seed(7, i)).collect();
+        let mut d = s.clone();
+        d.sort();
+        d.dedup();
+        assert_eq!(d.len(), 100);
+        assert_eq!(iteration_seed(7, 3), s[3]);
+        assert_ne!(iteration_seed(8, 3), s[3]);
+    }
+
+    #[test]
+    fn state_round_trips() {
+        let st = IterState {
+            index: 12,
+            start_spp: 48,
+            spp_done: 50,
+            r2: 1.25e-4,
+        };
+        let mut b = Vec::new();
+        st.encode(&mut b);
+        assert_eq!(b.len(), IterState::BYTES);
+        assert_eq!(IterState::decode(&b), Some(st));
+        assert_eq!(IterState::decode(&b[1..]), None);
+    }
+}
