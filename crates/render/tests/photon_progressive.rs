@@ -1,0 +1,275 @@
+//! The `photon` integrator's progressive mode (METHOD.md §7): iterations of
+//! fresh photon maps with a caustic radius that shrinks from one to the next.
+//! Bit-identical on any thread count and through checkpoint/resume; its
+//! caustic error keeps falling as iterations accumulate, where one map's
+//! stops; and the analytic furnace, also with a caustic in it.
+
+mod common;
+
+use common::*;
+use lumis_render::checkpoint::Checkpoint;
+use lumis_render::film::Film;
+use lumis_render::image_io::read_image;
+use lumis_render::integrator::{render_with, RenderHooks, RenderOutcome, RenderState};
+use lumis_render::load::{load_path, LoadedScene, Overrides, DEFAULT_SCENE};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+fn small_default(progressive: bool) -> LoadedScene {
+    let mut ov = Overrides::default();
+    ov.resolution(20, 14)
+        .integrator("photon")
+        .integrator_param("integer photons", "20000")
+        .integrator_param("integer causticphotons", "20000")
+        .integrator_param("integer gatherrays", "4")
+        .integrator_param("bool progressive", &progressive.to_string())
+        .integrator_param("integer iterationspp", "2");
+    load(DEFAULT_SCENE, &ov)
+}
+
+/// Renders `spp` on `threads`, stopping (as SIGINT would) once `stop_at` spp are done.
+fn run(
+    l: &LoadedScene,
+    spp: u32,
+    threads: usize,
+    stop_at: Option<u32>,
+    resume: Option<RenderState>,
+) -> RenderOutcome {
+    let cancel = AtomicBool::new(false);
+    let mut after = |s: &RenderState| {
+        if Some(s.spp_done) == stop_at {
+            cancel.store(true, Ordering::Relaxed);
+        }
+    };
+    render_with(
+        &l.scene,
+        &l.options.integrator,
+        &settings(l, spp, 11, threads),
+        RenderHooks {
+            progress: &|_| {},
+            cancel: &cancel,
+            after_pass: Some(&mut after),
+            resume,
+        },
+    )
+}
+
+fn same_bits(a: &Film, b: &Film) -> bool {
+    a.pixels.iter().zip(&b.pixels).all(|(p, q)| {
+        p.n == q.n
+            && p.mean.map(f64::to_bits) == q.mean.map(f64::to_bits)
+            && p.m2.map(f64::to_bits) == q.m2.map(f64::to_bits)
+    })
+}
+
+#[test]
+fn progressive_is_independent_of_threads_and_resumes_bit_identically() {
+    let l = small_default(true);
+    let full = run(&l, 6, 2, None, None);
+    let stats = full.photon_stats.clone().unwrap();
+    assert_eq!(stats.iterations, 3, "6 spp at 2 spp per iteration");
+    assert!(same_bits(&full.film, &run(&l, 6, 1, None, None).film));
+    // The mode is on: one map for the whole render gives another image.
+    let single = run(&small_default(false), 6, 2, None, None);
+    assert!(!same_bits(&full.film, &single.film));
+    // Memory stays at one iteration's maps (the single map of the same size).
+    let one = single.photon_stats.unwrap().memory_bytes as f64;
+    assert!(
+        (stats.memory_bytes as f64) < 1.1 * one,
+        "{} vs {one}",
+        stats.memory_bytes
+    );
+    // Stopped inside an iteration (3) and at its end (4); resumed through the
+    // checkpoint format on another thread count.
+    for stop in [3, 4] {
+        let part = run(&l, 6, 2, Some(stop), None);
+        assert!(part.interrupted && part.spp == stop);
+        let ck = Checkpoint {
+            lumis_version: env!("CARGO_PKG_VERSION").into(),
+            scene_hash: 1,
+            job: "{\"seed\": 11, \"budget\": {\"spp\": 6}}".into(),
+            state: part.state(),
+        };
+        let back = Checkpoint::decode(&ck.encode(), "test").unwrap();
+        let resumed = run(&l, 6, 1, None, Some(back.state));
+        assert_eq!(resumed.spp, 6);
+        assert!(
+            same_bits(&resumed.film, &full.film),
+            "resumed after {stop} spp"
+        );
+        // The resumed run rebuilt iteration 1 (stopped inside it) or began at 2.
+        let built = resumed.photon_stats.unwrap().iterations;
+        assert_eq!(built, if stop == 3 { 2 } else { 1 }, "stop {stop}");
+    }
+}
+
+/// The caustic region of the 64x64 test scenes, as `photon_consistency.rs`.
+const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
+
+fn scene_path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/test")
+        .join(format!("{name}.pbrt"))
+}
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+/// Per-pixel squared error against the committed `path` reference, less the
+/// reference's own variance, and the region mean's relative error.
+fn errors(name: &str, film: &Film) -> (f64, f64) {
+    let m = read_image(&data(&format!("{name}_ref_mean.exr"))).unwrap();
+    let v = read_image(&data(&format!("{name}_ref_var.exr"))).unwrap();
+    assert_eq!(m.data.len(), 3 * film.pixels.len());
+    let (mut sq, mut sum, mut sum_ref) = (0.0f64, 0.0f64, 0.0f64);
+    for (i, p) in film.pixels.iter().enumerate() {
+        for c in 0..3 {
+            let r = m.data[3 * i + c] as f64;
+            sq += (p.mean[c] - r).powi(2) - v.data[3 * i + c] as f64;
+            sum += p.mean[c];
+            sum_ref += r;
+        }
+    }
+    (sq / m.data.len() as f64, sum / sum_ref - 1.0)
+}
+
+/// Caustic photons per iteration, and samples per pixel per iteration.
+const N_ITER: u64 = 50_000;
+const S: u32 = 4;
+
+/// Mean MSE and mean relative region error over `seeds`.
+fn caustic_errors(
+    mode: &str,
+    progressive: bool,
+    photons: u64,
+    spp: u32,
+    seeds: &[u64],
+) -> (f64, f64) {
+    let name = "caustic_sphere";
+    let mut o = Overrides::default();
+    o.crop_from(CROP, "test").integrator("photon");
+    o.integrator_param("string caustics", &format!("\"{mode}\""))
+        .integrator_param("integer causticphotons", &photons.to_string())
+        .integrator_param("integer photons", "20000")
+        .integrator_param("bool progressive", &progressive.to_string())
+        .integrator_param("integer iterationspp", &S.to_string());
+    let l = load_path(&scene_path(name), &o).unwrap();
+    let (mut mse, mut rel) = (0.0, 0.0);
+    for &seed in seeds {
+        let (m, r) = errors(name, &render_loaded(&l, spp, seed, 0).film);
+        mse += m / seeds.len() as f64;
+        rel += r / seeds.len() as f64;
+    }
+    let what = if progressive {
+        "progressive"
+    } else {
+        "one map"
+    };
+    eprintln!(
+        "{mode:8} {what:11} {photons:>8} photons {spp:>4} spp: MSE {mse:.3e}, region {:+.2}%",
+        rel * 100.0
+    );
+    (mse, rel)
+}
+
+/// Photons only, diffuse floor, small area light: with one map the error
+/// stops falling once the samples have averaged the map's noise over each
+/// pixel (the map's own noise and bias stay); progressive, each iteration
+/// brings fresh photons and a smaller radius, and the error keeps falling
+/// with the iterations (4, 16, 64).
+#[test]
+fn photon_only_error_keeps_falling_with_iterations() {
+    let seeds = [1, 2];
+    let prog: Vec<f64> = [4u32, 16, 64]
+        .iter()
+        .map(|&i| caustic_errors("photons", true, N_ITER, i * S, &seeds).0)
+        .collect();
+    // One map with the photons of 4 iterations, at 4 and 64 iterations' samples.
+    let one_few = caustic_errors("photons", false, 4 * N_ITER, 4 * S, &seeds).0;
+    let one_many = caustic_errors("photons", false, 4 * N_ITER, 64 * S, &seeds).0;
+    assert!(prog[1] < 0.6 * prog[0], "4 -> 16 iterations: {prog:?}");
+    assert!(prog[2] < 0.7 * prog[1], "16 -> 64 iterations: {prog:?}");
+    assert!(
+        one_many > 0.5 * one_few,
+        "one map flattens: {one_few:.3e} -> {one_many:.3e}"
+    );
+    assert!(
+        prog[2] < 0.5 * one_many,
+        "64 iterations {:.3e} vs one map at the same samples {one_many:.3e}",
+        prog[2]
+    );
+}
+
+/// The seed's weights per iteration: the caustic region converges to the
+/// `path` reference (region mean within 1%, pixel error falling).
+#[test]
+fn mis_caustic_converges_to_path_with_iterations() {
+    let seeds = [1, 2];
+    let (few, _) = caustic_errors("mis", true, N_ITER, 4 * S, &seeds);
+    let (many, rel) = caustic_errors("mis", true, N_ITER, 64 * S, &seeds);
+    assert!(
+        many < 0.3 * few,
+        "4 -> 64 iterations: {few:.3e} -> {many:.3e}"
+    );
+    assert!(
+        rel.abs() < 0.01,
+        "region mean {:+.2}% off path",
+        rel * 100.0
+    );
+}
+
+/// Inside a closed diffuse sphere of albedo 0.5 emitting 0.5, radiance is 1
+/// everywhere (furnace.rs); a lossless glass sphere inside does not change
+/// it, but adds caustics (wall, glass, wall) estimated by the caustic map
+/// and the gather rays. Iterations average the maps' errors, so the bound
+/// is tighter than the single map's 1.5%.
+fn furnace(glass: bool, mode: &str) {
+    let glass = if glass {
+        "AttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate -1.1 -0.7 0.9\nShape \"sphere\" \"float radius\" [ 1.1 ]\nAttributeEnd"
+    } else {
+        ""
+    };
+    let text = format!(
+        r#"Integrator "photon" "integer maxdepth" [ 100 ] "bool progressive" true
+    "integer photons" [ 20000 ] "integer causticphotons" [ 50000 ] "string caustics" "{mode}"
+Sampler "independent"
+PixelFilter "box"
+Film "rgb" "integer xresolution" [ 24 ] "integer yresolution" [ 24 ]
+LookAt 0.1 0.2 0.3  1 0.5 -0.2  0 1 0
+Camera "perspective" "float fov" [ 80 ]
+WorldBegin
+{glass}
+AreaLightSource "diffuse" "rgb L" [ 0.5 0.5 0.5 ] "bool twosided" true
+Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
+Shape "sphere" "float radius" [ 3 ]
+"#
+    );
+    let l = load(&text, &Default::default());
+    let out = render_loaded(&l, 16, 7, 0);
+    let (mean, se) = mean_and_se(&out.film, None);
+    let stats = out.photon_stats.unwrap();
+    eprintln!(
+        "progressive furnace ({mode}, {} caustic photons stored): mean {mean:.5} se {se:.2e}",
+        stats.caustic_stored
+    );
+    assert_eq!(stats.iterations, 16);
+    assert_eq!(out.bad_samples, 0);
+    assert!(
+        (mean - 1.0).abs() < 0.0075 + 4.5 * se,
+        "progressive furnace ({mode}): mean {mean}"
+    );
+}
+
+#[test]
+fn progressive_furnace_converges_to_le_over_one_minus_albedo() {
+    furnace(false, "mis");
+}
+
+#[test]
+fn progressive_furnace_with_a_glass_caustic() {
+    furnace(true, "mis");
+    furnace(true, "photons");
+}
