@@ -232,6 +232,12 @@ fn print_summary(session: &Session, out: &RenderOutcome, img: &RgbImage, files: 
             ps.radiance_time.as_secs_f64(),
             ps.memory_bytes as f64 / (1u64 << 20) as f64
         );
+        if ps.iterations > 0 {
+            eprintln!(
+                "lumis: progressive: {} iterations, last caustic radius {:.3e}",
+                ps.iterations, ps.caustic_radius
+            );
+        }
     }
 }
 

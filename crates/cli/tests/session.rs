@@ -108,6 +108,33 @@ fn command_line_parameters_are_located_and_reported_like_the_files() {
         "{}",
         stderr(&o)
     );
+    // A progressive-only parameter without the progressive mode: said, not dropped.
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--resolution",
+            "8x8",
+            "--spp",
+            "1",
+            "-o",
+            "x.pfm",
+            "--integrator",
+            "photon",
+            "--photons",
+            "1000",
+            "--caustic-photons",
+            "1000",
+            "--iteration-spp",
+            "4",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("`iterationspp` has no effect without"),
+        "{}",
+        stderr(&o)
+    );
     let o = lumis(&d, &["render", "--integrator", "pathh", "-o", "x.pfm"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(

@@ -290,6 +290,18 @@ fn build_integrator(
     let mut known = vec!["maxdepth"];
     if e.ty == "photon" {
         known.extend(super::photon::names());
+        if integrator.photon().is_some_and(|s| s.progressive.is_none()) {
+            // Read only by the progressive mode: say so rather than drop them.
+            for name in ["iterationspp", "shrink", "initialradius"] {
+                if let Some(loc) = e.params.loc_of(name) {
+                    e.params.mark_used(name);
+                    w.push(Diagnostic::warning(
+                        &loc,
+                        format!("`{name}` has no effect without `\"bool progressive\" true`"),
+                    ));
+                }
+            }
+        }
     }
     w.unused(&e.params, &format!("integrator \"{}\"", e.ty), &known);
     Ok(integrator)
