@@ -276,7 +276,7 @@ Texture "c" "spectrum" "scale" "rgb tex" [0.1 0.2 0.4]
 /// caustics `L S D` (and `L S D S D` through the sheet's reflection). Each
 /// caustic mode of `photon` (the seed's MIS, photons only, gather rays
 /// only) matches `path` (which finds the light by BSDF sampling through the
-/// delta sheet).
+/// delta sheet), with one photon map and in the progressive mode.
 #[test]
 fn thin_sheet_caustic_modes_match_path() {
     let scene = |integrator: &str, caustics: &str| {
@@ -321,8 +321,29 @@ Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
     let (p, p_se) = render("path", "mis", 8192);
     eprintln!("path {p:.5} ± {p_se:.5}");
     assert!(p > 0.01, "the floor is lit: {p}");
-    for mode in ["mis", "photons", "gather"] {
-        let (m, m_se) = render("photon", mode, 16);
+    // The single map, and the progressive mode (4 iterations of 100k
+    // caustic photons, each with its own maps and a shrinking radius).
+    let progressive = r#""integer causticphotons" [ 400000 ]"#;
+    let iterations = r#""integer causticphotons" [ 100000 ] "bool progressive" true "integer iterationspp" [ 4 ]"#;
+    for (mode, prog) in ["mis", "photons", "gather"]
+        .into_iter()
+        .flat_map(|m| [(m, false), (m, true)])
+    {
+        let (m, m_se) = if prog {
+            let text = scene("photon", mode).replace(progressive, iterations);
+            let l = load(&text, &Default::default());
+            assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+            let out = render_loaded(&l, 16, 11, 0);
+            assert_eq!(out.bad_samples, 0);
+            mean_and_se(&out.film, None)
+        } else {
+            render("photon", mode, 16)
+        };
+        let mode = if prog {
+            format!("{mode} progressive")
+        } else {
+            mode.to_string()
+        };
         let noise = (p_se * p_se + m_se * m_se).sqrt();
         eprintln!(
             "photon {mode}: {m:.5} ± {m_se:.5} ({:+.2}%)",
