@@ -17,8 +17,7 @@ pub struct Saver {
 }
 
 impl Saver {
-    pub fn new(path: PathBuf, every: Duration, mut template: Checkpoint) -> Saver {
-        template.state.film = template.state.film.clone_header();
+    pub fn new(path: PathBuf, every: Duration, template: Checkpoint) -> Saver {
         Saver {
             path,
             every,

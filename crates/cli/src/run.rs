@@ -6,6 +6,7 @@ use crate::interrupt::{install_interrupt_handler, CANCEL, EXIT_INTERRUPTED};
 use crate::progress::Reporter;
 use anyhow::Result;
 use lumis_render::checkpoint::Checkpoint;
+use lumis_render::film::{Film, PixelBounds};
 use lumis_render::image_io::RgbImage;
 use lumis_render::integrator::{BadSample, RenderHooks, RenderOutcome, RenderState};
 use lumis_render::session::{load_checkpoint, Phases, RenderJob, Session};
@@ -92,21 +93,14 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
     }
     let job = &session.job;
     let mut saver = job.checkpoint.as_ref().map(|c| {
-        let empty = RenderState {
-            film: lumis_render::film::Film {
-                full_resolution: (0, 0),
-                bounds: session.settings.crop,
-                pixels: Vec::new(),
-                splats: Vec::new(),
-                splat_samples: 0,
-            },
-            spp_done: 0,
-            integrator: Vec::new(),
-            bad_samples: 0,
-            first_bad: None,
-            rays: 0,
-            elapsed: Duration::ZERO,
+        // Each save puts the render's state in; the template holds no pixels.
+        let none = PixelBounds {
+            x0: 0,
+            x1: 0,
+            y0: 0,
+            y1: 0,
         };
+        let empty = RenderState::new(Film::new((0, 0), none));
         crate::resume::Saver::new(
             job.resolve(&c.path),
             Duration::from_secs_f64(c.every),

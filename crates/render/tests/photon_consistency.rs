@@ -14,23 +14,10 @@ use common::*;
 use lumis_render::film::Film;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
 use lumis_render::load::{load_path, Overrides};
-use std::path::PathBuf;
 
 /// The caustic region of the 64x64 image (fractions x0, x1, y0, y1).
 const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
 const REF_SPP: u32 = 1_048_576;
-
-fn scene_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes/test")
-        .join(format!("{name}.pbrt"))
-}
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(name)
-}
 
 fn ov(integrator: &str) -> Overrides {
     let mut o = Overrides::default();
@@ -42,7 +29,7 @@ fn ov(integrator: &str) -> Overrides {
 #[ignore = "writes the committed references; run by hand"]
 fn make_references() {
     for name in ["caustic_sphere", "caustic_sphere_glossy"] {
-        let l = load_path(&scene_path(name), &ov("path")).unwrap();
+        let l = load_path(&test_scene(name), &ov("path")).unwrap();
         let out = render_loaded(&l, REF_SPP, 2024, 0);
         let (w, h) = (out.film.width(), out.film.height());
         let cmd =
@@ -57,15 +44,15 @@ fn make_references() {
                 ("lumis:integrator".into(), "path".into()),
                 ("lumis:command".into(), cmd.into()),
             ];
-            write_image(&data(&format!("{name}_ref_{suffix}.exr")), &img, 0.0).unwrap();
+            write_image(&test_data(&format!("{name}_ref_{suffix}.exr")), &img, 0.0).unwrap();
         }
     }
 }
 
 fn reference(name: &str) -> (f64, f64) {
-    let m = read_image(&data(&format!("{name}_ref_mean.exr"))).expect("committed reference");
-    let v =
-        read_image(&data(&format!("{name}_ref_var.exr"))).expect("committed reference variance");
+    let m = read_image(&test_data(&format!("{name}_ref_mean.exr"))).expect("committed reference");
+    let v = read_image(&test_data(&format!("{name}_ref_var.exr")))
+        .expect("committed reference variance");
     let n = (m.width * m.height) as f64;
     let mean = m.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n);
     let var = v.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n * n);
@@ -76,7 +63,7 @@ fn photon_region(name: &str, mode: &str, caustic_photons: u64, spp: u32) -> (f64
     let mut o = ov("photon");
     o.integrator_param("string caustics", &format!("\"{mode}\""));
     o.integrator_param("integer causticphotons", &caustic_photons.to_string());
-    let l = load_path(&scene_path(name), &o).unwrap();
+    let l = load_path(&test_scene(name), &o).unwrap();
     region_mean_and_se(&render_loaded(&l, spp, 7, 0).film, None)
 }
 
@@ -158,7 +145,7 @@ fn aimed_caustic_photons_match_path() {
             o.integrator_param("string caustics", &format!("\"{mode}\""));
             o.integrator_param("integer causticphotons", "1000000");
             o.integrator_param("bool aimcaustics", &aim.to_string());
-            let l = load_path(&scene_path(name), &o).unwrap();
+            let l = load_path(&test_scene(name), &o).unwrap();
             let out = render_loaded(&l, 64, 7, 0);
             let (m, se) = region_mean_and_se(&out.film, None);
             let err = (m - r) / r;
@@ -181,8 +168,8 @@ fn aimed_caustic_photons_match_path() {
 /// Per-pixel squared error against the committed reference, less the
 /// reference's own variance (an unbiased estimate of the image's MSE).
 fn mse_against_reference(name: &str, film: &Film) -> f64 {
-    let m = read_image(&data(&format!("{name}_ref_mean.exr"))).unwrap();
-    let v = read_image(&data(&format!("{name}_ref_var.exr"))).unwrap();
+    let m = read_image(&test_data(&format!("{name}_ref_mean.exr"))).unwrap();
+    let v = read_image(&test_data(&format!("{name}_ref_var.exr"))).unwrap();
     assert_eq!(m.data.len(), 3 * film.pixels.len());
     let mut sq = 0.0f64;
     for (i, p) in film.pixels.iter().enumerate() {
@@ -212,7 +199,7 @@ fn mis_beats_both_baselines_at_equal_samples_on_the_glossy_floor() {
         let mut o = ov("photon");
         o.integrator_param("string caustics", &format!("\"{mode}\""));
         o.integrator_param("string alpha", &format!("\"{alpha}\""));
-        let l = load_path(&scene_path(name), &o).unwrap();
+        let l = load_path(&test_scene(name), &o).unwrap();
         let e: f64 = seeds
             .iter()
             .map(|&s| mse_against_reference(name, &render_loaded(&l, spp, s, 0).film))

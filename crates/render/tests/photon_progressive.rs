@@ -10,10 +10,8 @@ use common::*;
 use lumis_render::checkpoint::Checkpoint;
 use lumis_render::film::Film;
 use lumis_render::image_io::read_image;
-use lumis_render::integrator::{render_with, RenderHooks, RenderOutcome, RenderState};
+use lumis_render::integrator::{RenderOutcome, RenderState};
 use lumis_render::load::{load_path, LoadedScene, Overrides, DEFAULT_SCENE};
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 fn small_default(progressive: bool) -> LoadedScene {
     let mut ov = Overrides::default();
@@ -27,7 +25,7 @@ fn small_default(progressive: bool) -> LoadedScene {
     load(DEFAULT_SCENE, &ov)
 }
 
-/// Renders `spp` on `threads`, stopping (as SIGINT would) once `stop_at` spp are done.
+/// `spp` samples on `threads`, stopped at `stop_at` and resumed from `resume`.
 fn run(
     l: &LoadedScene,
     spp: u32,
@@ -35,31 +33,7 @@ fn run(
     stop_at: Option<u32>,
     resume: Option<RenderState>,
 ) -> RenderOutcome {
-    let cancel = AtomicBool::new(false);
-    let mut after = |s: &RenderState| {
-        if Some(s.spp_done) == stop_at {
-            cancel.store(true, Ordering::Relaxed);
-        }
-    };
-    render_with(
-        &l.scene,
-        &l.options.integrator,
-        &settings(l, spp, 11, threads),
-        RenderHooks {
-            progress: &|_| {},
-            cancel: &cancel,
-            after_pass: Some(&mut after),
-            resume,
-        },
-    )
-}
-
-fn same_bits(a: &Film, b: &Film) -> bool {
-    a.pixels.iter().zip(&b.pixels).all(|(p, q)| {
-        p.n == q.n
-            && p.mean.map(f64::to_bits) == q.mean.map(f64::to_bits)
-            && p.m2.map(f64::to_bits) == q.m2.map(f64::to_bits)
-    })
+    render_until(l, &settings(l, spp, 11, threads), stop_at, resume)
 }
 
 #[test]
@@ -106,23 +80,11 @@ fn progressive_is_independent_of_threads_and_resumes_bit_identically() {
 /// The caustic region of the 64x64 test scenes, as `photon_consistency.rs`.
 const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
 
-fn scene_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../scenes/test")
-        .join(format!("{name}.pbrt"))
-}
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(name)
-}
-
 /// Per-pixel squared error against the committed `path` reference, less the
 /// reference's own variance, and the region mean's relative error.
 fn errors(name: &str, film: &Film) -> (f64, f64) {
-    let m = read_image(&data(&format!("{name}_ref_mean.exr"))).unwrap();
-    let v = read_image(&data(&format!("{name}_ref_var.exr"))).unwrap();
+    let m = read_image(&test_data(&format!("{name}_ref_mean.exr"))).unwrap();
+    let v = read_image(&test_data(&format!("{name}_ref_var.exr"))).unwrap();
     assert_eq!(m.data.len(), 3 * film.pixels.len());
     let (mut sq, mut sum, mut sum_ref) = (0.0f64, 0.0f64, 0.0f64);
     for (i, p) in film.pixels.iter().enumerate() {
@@ -156,7 +118,7 @@ fn caustic_errors(
         .integrator_param("integer photons", "20000")
         .integrator_param("bool progressive", &progressive.to_string())
         .integrator_param("integer iterationspp", &S.to_string());
-    let l = load_path(&scene_path(name), &o).unwrap();
+    let l = load_path(&test_scene(name), &o).unwrap();
     let (mut mse, mut rel) = (0.0, 0.0);
     for &seed in seeds {
         let (m, r) = errors(name, &render_loaded(&l, spp, seed, 0).film);

@@ -5,14 +5,11 @@
 
 mod common;
 
-use common::load;
+use common::{load, render_until};
 use lumis_render::checkpoint::Checkpoint;
 use lumis_render::film::Film;
-use lumis_render::integrator::{
-    render_with, BadSample, RenderHooks, RenderOutcome, RenderSettings, RenderState,
-};
+use lumis_render::integrator::{BadSample, RenderSettings};
 use lumis_render::load::{LoadedScene, Overrides, DEFAULT_SCENE};
-use std::sync::atomic::{AtomicBool, Ordering};
 
 fn scene(integrator: &str) -> LoadedScene {
     let mut ov = Overrides::default();
@@ -22,32 +19,6 @@ fn scene(integrator: &str) -> LoadedScene {
         .integrator_param("integer causticphotons", "20000")
         .integrator_param("integer gatherrays", "4");
     load(DEFAULT_SCENE, &ov)
-}
-
-/// Renders `settings`, stopping (as SIGINT would) once `stop_at` spp are done.
-fn run(
-    l: &LoadedScene,
-    settings: &RenderSettings,
-    stop_at: Option<u32>,
-    resume: Option<RenderState>,
-) -> RenderOutcome {
-    let cancel = AtomicBool::new(false);
-    let mut after = |s: &RenderState| {
-        if Some(s.spp_done) == stop_at {
-            cancel.store(true, Ordering::Relaxed);
-        }
-    };
-    render_with(
-        &l.scene,
-        &l.options.integrator,
-        settings,
-        RenderHooks {
-            progress: &|_| {},
-            cancel: &cancel,
-            after_pass: Some(&mut after),
-            resume,
-        },
-    )
 }
 
 fn assert_same_bits(a: &Film, b: &Film) {
@@ -66,9 +37,9 @@ fn assert_same_bits(a: &Film, b: &Film) {
 fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
     let l = scene(integrator);
     let s = common::settings(&l, spp, 11, 2);
-    let full = run(&l, &s, None, None);
+    let full = render_until(&l, &s, None, None);
     assert_eq!(full.spp, spp);
-    let part = run(&l, &s, Some(stop), None);
+    let part = render_until(&l, &s, Some(stop), None);
     assert!(part.interrupted);
     assert_eq!(part.spp, stop);
     // Through the file format, as `--checkpoint` / `--resume` do.
@@ -81,7 +52,7 @@ fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
     let back = Checkpoint::decode(&ck.encode(), "test").unwrap();
     // Resumed on another thread count: still identical.
     let s1 = RenderSettings { threads: 1, ..s };
-    let resumed = run(&l, &s1, None, Some(back.state));
+    let resumed = render_until(&l, &s1, None, Some(back.state));
     assert_eq!(resumed.spp, spp);
     assert!(!resumed.interrupted);
     assert_same_bits(&resumed.film, &full.film);
@@ -106,7 +77,7 @@ fn injected_nan_is_dropped_counted_and_located() {
         inject_nan: Some((5, 3, 1)),
         ..common::settings(&l, 3, 0, 2)
     };
-    let out = run(&l, &s, None, None);
+    let out = render_until(&l, &s, None, None);
     assert_eq!(out.bad_samples, 1);
     assert_eq!(
         out.first_bad,

@@ -74,6 +74,21 @@ pub struct RenderState {
     pub elapsed: Duration,
 }
 
+impl RenderState {
+    /// A render that has not started, on `film`.
+    pub fn new(film: Film) -> RenderState {
+        RenderState {
+            film,
+            spp_done: 0,
+            integrator: Vec::new(),
+            bad_samples: 0,
+            first_bad: None,
+            rays: 0,
+            elapsed: Duration::ZERO,
+        }
+    }
+}
+
 /// Optional callbacks and a saved state to continue from.
 pub struct RenderHooks<'a> {
     pub progress: &'a (dyn Fn(&Progress) + Sync),
@@ -139,8 +154,10 @@ pub struct Start {
 #[derive(Clone, Copy, Debug)]
 pub struct PassReport {
     pub spp_done: u32,
-    /// Samples per pixel taken by this run, and the time its passes took.
+    /// Samples per pixel and passes taken by this run, and the time its
+    /// passes took.
     pub samples_here: u32,
+    pub passes_here: u32,
     pub pass_time_sum: Duration,
     /// Wall time of this run so far, and its budget.
     pub elapsed: Duration,
@@ -240,15 +257,10 @@ pub fn drive<P: Pass>(
     mut hooks: RenderHooks,
 ) -> RenderOutcome {
     let start = Instant::now();
-    let mut state = hooks.resume.take().unwrap_or_else(|| RenderState {
-        film: Film::new(scene.camera.resolution, settings.crop),
-        spp_done: 0,
-        integrator: Vec::new(),
-        bad_samples: 0,
-        first_bad: None,
-        rays: 0,
-        elapsed: Duration::ZERO,
-    });
+    let mut state = hooks
+        .resume
+        .take()
+        .unwrap_or_else(|| RenderState::new(Film::new(scene.camera.resolution, settings.crop)));
     let elapsed_before = state.elapsed;
     let per_pass = settings.spp_per_pass.max(1);
     let limit = if settings.spp == 0 {
@@ -259,6 +271,7 @@ pub fn drive<P: Pass>(
     let mut interrupted = false;
     let mut pass_time_sum = Duration::ZERO;
     let mut samples_here = 0u32;
+    let mut passes_here = 0u32;
     let mut rays_here = RayCounts::default();
     while state.spp_done < limit {
         if hooks.cancel.load(Ordering::Relaxed) || !pass.before_pass(hooks.cancel) {
@@ -272,6 +285,7 @@ pub fn drive<P: Pass>(
         state.spp_done += n;
         state.film.splat_samples = state.spp_done;
         samples_here += n;
+        passes_here += 1;
         rays_here.add(&tally.rays);
         state.rays += tally.rays.total();
         state.bad_samples += tally.bad;
@@ -293,6 +307,7 @@ pub fn drive<P: Pass>(
         pass.after_pass(&PassReport {
             spp_done: done,
             samples_here,
+            passes_here,
             pass_time_sum,
             elapsed,
             time_limit: settings.time_limit,

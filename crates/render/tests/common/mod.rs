@@ -7,10 +7,12 @@ pub mod chi2;
 pub mod envmap;
 
 use lumis_render::film::Film;
-use lumis_render::integrator::{render, RenderOutcome, RenderSettings};
+use lumis_render::integrator::{
+    render, render_with, RenderHooks, RenderOutcome, RenderSettings, RenderState,
+};
 use lumis_render::load::{load_text, LoadedScene, Overrides};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 pub fn load(text: &str, ov: &Overrides) -> LoadedScene {
     load_text(text, "test.pbrt", Path::new("."), ov)
@@ -139,4 +141,54 @@ pub fn shared_scene(rel: &str) -> Option<PathBuf> {
     }
     eprintln!("skipping: ../shared/scenes not found ({})", p.display());
     None
+}
+
+/// Renders `settings`, stopping (as SIGINT would) once `stop_at` spp are
+/// done; `resume` continues a saved state.
+pub fn render_until(
+    l: &LoadedScene,
+    settings: &RenderSettings,
+    stop_at: Option<u32>,
+    resume: Option<RenderState>,
+) -> RenderOutcome {
+    let cancel = AtomicBool::new(false);
+    let mut after = |s: &RenderState| {
+        if Some(s.spp_done) == stop_at {
+            cancel.store(true, Ordering::Relaxed);
+        }
+    };
+    render_with(
+        &l.scene,
+        &l.options.integrator,
+        settings,
+        RenderHooks {
+            progress: &|_| {},
+            cancel: &cancel,
+            after_pass: Some(&mut after),
+            resume,
+        },
+    )
+}
+
+/// Whether two films hold the same per-pixel statistics, bit for bit.
+pub fn same_bits(a: &Film, b: &Film) -> bool {
+    a.pixels.iter().zip(&b.pixels).all(|(p, q)| {
+        p.n == q.n
+            && p.mean.map(f64::to_bits) == q.mean.map(f64::to_bits)
+            && p.m2.map(f64::to_bits) == q.m2.map(f64::to_bits)
+    })
+}
+
+/// `scenes/test/<name>.pbrt`.
+pub fn test_scene(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/test")
+        .join(format!("{name}.pbrt"))
+}
+
+/// `tests/data/<name>` (committed references).
+pub fn test_data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
 }

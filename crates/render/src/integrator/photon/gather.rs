@@ -356,7 +356,9 @@ fn caustic_photons(
         }
         let n = map.emitted() as f64;
         let r = r2.sqrt();
-        let skip = boundary_photon(&found, s.nearest, r2).filter(|_| skip_boundary);
+        let skip = skip_boundary
+            .then(|| boundary_photon(&found, s.nearest, r2))
+            .flatten();
         let mut sum = Rgb::BLACK;
         for (j, &(i, d2)) in found.iter().enumerate() {
             if Some(j) == skip {

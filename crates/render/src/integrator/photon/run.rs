@@ -36,9 +36,8 @@ pub struct PhotonRun<'a> {
     last: bool,
     /// Progressive: the photon passes' figures summed over iterations.
     totals: PhotonStats,
-    /// Progressive: the latest photon pass's duration, and this run's passes.
+    /// Progressive: the latest photon pass's duration.
     photon_time: Duration,
-    passes: u32,
 }
 
 impl<'a> PhotonRun<'a> {
@@ -75,7 +74,6 @@ impl<'a> PhotonRun<'a> {
             last: false,
             totals: PhotonStats::default(),
             photon_time: Duration::ZERO,
-            passes: 0,
         }
     }
 
@@ -161,7 +159,6 @@ impl<'a> PhotonRun<'a> {
     /// and a camera pass would not fit in the time left; then the current
     /// maps serve the passes to the end.
     pub fn after_pass(&mut self, r: &PassReport) {
-        self.passes += 1;
         if let Some(it) = self.iter.as_mut() {
             it.spp_done = r.spp_done;
             let s = self
@@ -172,7 +169,7 @@ impl<'a> PhotonRun<'a> {
                 return;
             }
             if let Some(t) = r.time_limit {
-                let per_pass = r.pass_time_sum / self.passes;
+                let per_pass = r.pass_time_sum / r.passes_here;
                 if r.elapsed + self.photon_time + per_pass > t {
                     self.last = true;
                     return;
