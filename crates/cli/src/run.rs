@@ -227,9 +227,10 @@ fn print_summary(session: &Session, out: &RenderOutcome, img: &RgbImage, files: 
             ps.memory_bytes as f64 / (1u64 << 20) as f64
         );
         if ps.iterations > 0 {
+            let (g, c) = ps.iteration_photons;
             eprintln!(
-                "lumis: progressive: {} iterations, last caustic radius {:.3e}",
-                ps.iterations, ps.caustic_radius
+                "lumis: progressive: {} iterations of {g} global and {c} caustic photons, last caustic radius {:.3e}",
+                ps.render_iterations, ps.caustic_radius
             );
         }
     }

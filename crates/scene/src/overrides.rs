@@ -129,6 +129,14 @@ impl Overrides {
         self.items.is_empty()
     }
 
+    /// Whether an override sets parameter `name` of `directive`.
+    pub fn sets(&self, directive: &str, name: &str) -> bool {
+        let decl_end = format!(" {name}\"");
+        self.items
+            .iter()
+            .any(|o| o.directive == directive && o.params.contains(&decl_end))
+    }
+
     /// `entity` (the file's, if any) with this set's overrides of
     /// `directive` layered on; without a file entity, one of type
     /// `default_ty` is made when there is anything to layer.
@@ -196,6 +204,8 @@ mod tests {
         assert_eq!(e.params.get_string("caustics", "mis").unwrap(), "gather");
         assert_eq!(e.params.params.len(), 3);
         assert_eq!(e.params.loc_of("photons").unwrap().file.path, "--photons");
+        assert!(o.sets("Integrator", "photons") && o.sets("Film", "xresolution"));
+        assert!(!o.sets("Integrator", "maxdepth") && !o.sets("Film", "photons"));
         // A directive the file lacks gets an entity of the default type.
         let f = o.apply("Film", None, "rgb").unwrap().unwrap();
         assert_eq!(

@@ -148,6 +148,9 @@ pub struct Start {
     pub seed: u64,
     /// The area, in pixels, a pixel's samples spread over (the filter's).
     pub pixel_spread: f32,
+    /// The pixels rendered, and the render's wall-clock budget.
+    pub crop: PixelBounds,
+    pub time_limit: Option<Duration>,
 }
 
 /// What an integrator is told after each pass.
@@ -191,6 +194,14 @@ pub trait Pass: Sync {
     fn before_pass(&mut self, cancel: &AtomicBool) -> bool;
     /// Radiance arriving along a camera ray, for the sample's own pixel.
     fn li(&self, ray: Ray, sampler: &mut Sampler, cx: &mut SampleCx) -> Rgb;
+    /// The time the render's next step would take after the pass `report`
+    /// tells of, which took `pass_time`: the driver stops under a time
+    /// budget when it would not fit. The default, one more pass; `None`:
+    /// the render cannot stop here (a budget never cuts the step short).
+    fn next_cost(&self, report: &PassReport, pass_time: Duration) -> Option<Duration> {
+        let _ = report;
+        Some(pass_time)
+    }
     /// Bookkeeping after a pass.
     fn after_pass(&mut self, report: &PassReport);
     /// The integrator's own state, for checkpoints (empty if it has none).
@@ -237,6 +248,8 @@ pub fn render_with(
             spp: settings.spp,
             seed: settings.seed,
             pixel_spread: settings.filter.sample_spread(),
+            crop: settings.crop,
+            time_limit: settings.time_limit,
         };
         let saved = hooks.resume.as_ref().map(|s| s.integrator.as_slice());
         let mut run = Run::new(integrator, scene, &start, saved);
@@ -302,9 +315,7 @@ pub fn drive<P: Pass>(
         };
         let pass_time = pass_start.elapsed();
         pass_time_sum += pass_time;
-        // Stop when another pass of the same length would overrun the budget.
-        let stop = settings.time_limit.is_some_and(|t| elapsed + pass_time > t);
-        pass.after_pass(&PassReport {
+        let mut report = PassReport {
             spp_done: done,
             samples_here,
             passes_here,
@@ -312,8 +323,16 @@ pub fn drive<P: Pass>(
             elapsed,
             time_limit: settings.time_limit,
             spp_target: settings.spp,
-            stopping: stop,
-        });
+            stopping: false,
+        };
+        // Stop when the next step (another pass of the same length, or what
+        // the integrator says) would overrun the budget.
+        report.stopping = match (settings.time_limit, pass.next_cost(&report, pass_time)) {
+            (Some(t), Some(cost)) => elapsed + cost > t,
+            _ => false,
+        };
+        let stop = report.stopping;
+        pass.after_pass(&report);
         state.integrator = pass.save();
         (hooks.progress)(&Progress {
             spp_done: done,
@@ -452,6 +471,9 @@ impl<P: Pass> Pass for InjectNan<'_, P> {
             l.r = f32::NAN;
         }
         l
+    }
+    fn next_cost(&self, report: &PassReport, pass_time: Duration) -> Option<Duration> {
+        self.0.next_cost(report, pass_time)
     }
     fn after_pass(&mut self, report: &PassReport) {
         self.0.after_pass(report)

@@ -10,6 +10,7 @@ use crate::geometry::Ray;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler};
 use std::sync::atomic::AtomicBool;
+use std::time::Duration;
 
 /// An integrator prepared for one render of one scene.
 pub enum Run<'a> {
@@ -65,6 +66,13 @@ impl Pass for Run<'_> {
                 direct::li(scene, ray, sampler, *max_depth, cx.rays)
             }
             Run::Photon(p) => p.li(ray, sampler, cx.rays),
+        }
+    }
+
+    fn next_cost(&self, r: &PassReport, pass_time: Duration) -> Option<Duration> {
+        match self {
+            Run::Photon(p) => p.next_cost(r, pass_time),
+            _ => Some(pass_time),
         }
     }
 

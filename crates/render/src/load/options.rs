@@ -200,6 +200,9 @@ pub fn build_options(
     };
 
     let integrator = build_integrator(desc, ov, w)?;
+    if let Some(p) = integrator.photon().and_then(|s| s.progressive) {
+        spp = progressive_spp(spp, p, ov)?;
+    }
     Ok(RenderOptions {
         resolution,
         crop,
@@ -211,6 +214,33 @@ pub fn build_options(
         imaging_scale,
         white_balance,
     })
+}
+
+/// The progressive mode's sample count: `iterations` x `iterationspp` when
+/// the iteration count is given, unless only the scene file gives it and
+/// an override gives the sample count (a command line wins over the file);
+/// both given by overrides is an error.
+fn progressive_spp(
+    spp: u32,
+    p: crate::integrator::photon::Progressive,
+    ov: &Overrides,
+) -> Result<u32, Diagnostic> {
+    if p.iterations == 0 {
+        return Ok(spp);
+    }
+    let (iters_ov, spp_ov) = (
+        ov.sets("Integrator", "iterations"),
+        ov.sets("Sampler", "pixelsamples"),
+    );
+    if iters_ov && spp_ov {
+        return Err(Diagnostic::plain_error(
+            "both the iteration count and the sample count are given; give one",
+        ));
+    }
+    if spp_ov {
+        return Ok(spp);
+    }
+    Ok(p.iterations.saturating_mul(p.iteration_spp.max(1)))
 }
 
 /// Sampler types a scene file or an override may name without a warning.
@@ -292,7 +322,7 @@ fn build_integrator(
         known.extend(super::photon::names());
         if integrator.photon().is_some_and(|s| s.progressive.is_none()) {
             // Read only by the progressive mode: say so rather than drop them.
-            for name in ["iterationspp", "shrink", "initialradius"] {
+            for name in PROGRESSIVE_ONLY {
                 if let Some(loc) = e.params.loc_of(name) {
                     e.params.mark_used(name);
                     w.push(Diagnostic::warning(
@@ -302,10 +332,32 @@ fn build_integrator(
                 }
             }
         }
+        let share_ignored = integrator
+            .photon()
+            .and_then(|s| s.progressive)
+            .is_some_and(|p| p.photon_share == 0.0);
+        if let Some(loc) = e.params.loc_of("photonshare").filter(|_| share_ignored) {
+            let share = e.params.get_float("photonshare", 0.0)?;
+            if share > 0.0 {
+                w.push(Diagnostic::warning(
+                    &loc,
+                    "`photonshare` has no effect when `photons` or `causticphotons` is given",
+                ));
+            }
+        }
     }
     w.unused(&e.params, &format!("integrator \"{}\"", e.ty), &known);
     Ok(integrator)
 }
+
+/// Parameters of `photon` that only the progressive mode reads.
+const PROGRESSIVE_ONLY: [&str; 5] = [
+    "iterationspp",
+    "shrink",
+    "initialradius",
+    "iterations",
+    "photonshare",
+];
 
 /// pbrt's crop window (fractions) to pixel bounds.
 pub fn crop_bounds(res: (u32, u32), c: [f32; 4]) -> PixelBounds {

@@ -124,10 +124,30 @@ fn progressive(e: &Entity) -> Result<Progressive, Diagnostic> {
             format!("`initialradius` must be >= 0, found {r0}"),
         ));
     }
+    let iterations = p.get_int("iterations", 0)?;
+    if iterations < 0 {
+        return Err(bad(
+            "iterations",
+            format!("`iterations` must be >= 0, found {iterations}"),
+        ));
+    }
+    let share = p.get_float("photonshare", d.photon_share)?;
+    if !(0.0..1.0).contains(&share) {
+        return Err(bad(
+            "photonshare",
+            format!("`photonshare` must be in [0, 1), found {share}"),
+        ));
+    }
+    // Photon counts given by the scene or the command line are kept.
+    let counts_given = ["photons", "causticphotons"]
+        .iter()
+        .any(|n| p.loc_of(n).is_some());
     Ok(Progressive {
         iteration_spp: spp as u32,
         shrink,
         initial_radius: r0,
+        iterations: iterations as u32,
+        photon_share: if counts_given { 0.0 } else { share },
     })
 }
 

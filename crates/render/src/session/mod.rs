@@ -174,7 +174,7 @@ impl Session {
             .as_ref()
             .map(|p| p.display().to_string())
             .unwrap_or_else(|| "<default>".into());
-        vec![
+        let mut m = vec![
             ("lumis:spp".into(), out.spp.to_string()),
             (
                 "lumis:integrator".into(),
@@ -182,7 +182,18 @@ impl Session {
             ),
             ("lumis:seed".into(), self.job.seed.to_string()),
             ("lumis:scene".into(), scene),
-        ]
+        ];
+        // A progressive render's iterations and photon counts (chosen by
+        // the time rule under a time budget) reproduce it without one.
+        if let Some(ps) = out.photon_stats.as_ref().filter(|p| p.iterations > 0) {
+            let (g, c) = ps.iteration_photons;
+            m.push(("lumis:iterations".into(), ps.render_iterations.to_string()));
+            m.push((
+                "lumis:iteration-photons".into(),
+                format!("{g} global, {c} caustic"),
+            ));
+        }
+        m
     }
 
     /// Writes `img` to every output. If one cannot be written (its folder

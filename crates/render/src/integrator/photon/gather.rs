@@ -7,7 +7,7 @@
 
 use super::aim::emitted_flux;
 use super::weights::{q1, q2, w1, w2, Alpha, AlphaMode};
-use super::{Kernel, PhotonMaps, PhotonSettings};
+use super::{Kernel, PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE};
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
@@ -32,8 +32,6 @@ thread_local! {
     static SCRATCH: RefCell<Vec<(u32, f32)>> = const { RefCell::new(Vec::new()) };
 }
 
-/// The global map's radius relative to the caustic map's.
-const GLOBAL_RADIUS_SCALE: f32 = 5.0;
 const CONE_K: f32 = 1.1;
 
 /// Radiance along a camera ray.
@@ -339,10 +337,11 @@ fn caustic_photons(
         found.clear();
         // Progressive iterations: every photon in a disc fixed beforehand
         // (its count varies); otherwise the `nearest` ones.
-        let (r2, skip_boundary) = match ctx.maps.caustic_radius {
-            Some(r) => {
-                map.within(x.geom.p, r, &mut found);
-                (r * r, false)
+        let (r2, skip_boundary) = match &ctx.maps.radii {
+            Some(radii) => {
+                let r2 = radii.caustic_r2(x.geom.p);
+                map.within(x.geom.p, r2.sqrt(), &mut found);
+                (r2, false)
             }
             None => (
                 map.knn(x.geom.p, s.nearest, ctx.maps.max_radius, &mut found),
@@ -398,14 +397,20 @@ fn caustic_photons(
     })
 }
 
-/// Radiance leaving non-delta `y` towards `wo` from the global photon map.
+/// Radiance leaving non-delta `y` towards `wo` from the global photon map:
+/// the nearest radiance photon (diffuse surfaces), else a density estimate
+/// over the `nearest` photons or, in progressive iterations, over every
+/// photon in the iteration's fixed disc.
 fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rgb {
     let n = if y.geom.ng.dot(wo) < 0.0 {
         -y.geom.ng
     } else {
         y.geom.ng
     };
-    let radius = ctx.maps.max_radius * GLOBAL_RADIUS_SCALE;
+    let fixed = ctx.maps.radii.as_ref();
+    let radius = fixed.map_or(ctx.maps.max_radius * GLOBAL_RADIUS_SCALE, |r| {
+        r.global_max()
+    });
     if let (Some(rp), Some(albedo)) = (&ctx.maps.radiance, bsdf.bsdf.diffuse_albedo()) {
         if let Some(e) = rp.irradiance(y.geom.p, n, radius) {
             return e * albedo * (1.0 / PI);
@@ -415,11 +420,20 @@ fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rg
     SCRATCH.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
-        let r2 = map.knn(y.geom.p, ctx.s.nearest, radius, &mut found);
+        let (r2, skip) = match fixed {
+            Some(radii) => {
+                let r2 = radii.global_r2(y.geom.p);
+                map.within(y.geom.p, r2.sqrt(), &mut found);
+                (r2, None)
+            }
+            None => {
+                let r2 = map.knn(y.geom.p, ctx.s.nearest, radius, &mut found);
+                (r2, boundary_photon(&found, ctx.s.nearest, r2))
+            }
+        };
         if found.is_empty() || r2 <= 0.0 {
             return Rgb::BLACK;
         }
-        let skip = boundary_photon(&found, ctx.s.nearest, r2);
         let mut sum = Rgb::BLACK;
         for (j, &(i, _)) in found.iter().enumerate() {
             if Some(j) != skip {

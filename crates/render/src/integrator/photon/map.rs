@@ -315,6 +315,32 @@ pub fn irradiance_knn(
     }
 }
 
+/// Irradiance estimate at `p` with normal `n` from every photon within
+/// `radius` arriving from `n`'s side, except one lying exactly at `p`:
+/// `E = sum(power) / (pi r^2)`. (A point that is itself a photon of the
+/// map would otherwise always count itself, however small the disc.)
+pub fn irradiance_within(
+    map: &PhotonMap,
+    p: Vec3,
+    n: Vec3,
+    radius: f32,
+    scratch: &mut Vec<(u32, f32)>,
+) -> Rgb {
+    map.within(p, radius, scratch);
+    let mut sum = Rgb::BLACK;
+    for &(i, d2) in scratch.iter() {
+        let ph = map.photon(i);
+        if d2 > 0.0 && ph.dir_unnormalized().dot(n) > 0.0 {
+            sum += ph.power();
+        }
+    }
+    if radius > 0.0 {
+        sum / (PI * radius * radius)
+    } else {
+        Rgb::BLACK
+    }
+}
+
 /// Smallest bound `b` with `d2 < b` exactly when `d2 <= r2`.
 #[inline]
 pub(crate) fn inclusive(r2: f32) -> f32 {

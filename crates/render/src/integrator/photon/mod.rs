@@ -9,21 +9,26 @@
 //! shrinking radius in `progressive.rs`.
 
 pub mod aim;
+pub mod budget;
 pub mod gather;
 pub mod map;
 pub mod photon;
 pub mod progressive;
 pub mod radiance;
+pub mod radius_field;
 pub mod run;
 pub mod trace;
 pub mod weights;
 
 use crate::scene::Scene;
+use lumis_math::Vec3;
 use lumis_scene::ParamSpec;
 use map::PhotonMap;
 pub use progressive::Progressive;
 use radiance::RadiancePhotons;
+use radius_field::RadiusField;
 use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 pub use weights::{AlphaMode, CausticMode, Heuristic};
 
@@ -119,6 +124,8 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("integer", "iterationspp", "iteration-spp", "S", "progressive: samples per pixel rendered with each iteration's maps"),
     spec("float", "shrink", "shrink", "A", "progressive: radius sequence r_{i+1}^2 = r_i^2 (i + A) / (i + 1), 0 < A <= 1"),
     spec("float", "initialradius", "initial-radius", "R", "progressive: caustic radius of the first iteration (0: the median k-NN radius of the first iteration's caustic photons)"),
+    spec("integer", "iterations", "iterations", "N", "progressive: iterations to render (samples per pixel = N x iterationspp; 0: from the sample count)"),
+    spec("float", "photonshare", "photon-share", "F", "progressive with a time budget: share of each iteration's time spent tracing photons, which sets the photon counts when they are not given (0: keep the counts)"),
 ];
 
 /// Bytes per stored photon plus kd-tree overhead, and per global photon the
@@ -176,6 +183,27 @@ pub struct PhotonStats {
     pub iterations: u32,
     /// Progressive: the caustic radius of the latest iteration.
     pub caustic_radius: f32,
+    /// Progressive: photons emitted per iteration (global, caustic).
+    pub iteration_photons: (u64, u64),
+    /// Progressive: iterations of the whole render (over all runs of a
+    /// resumed one) begun so far; `iterations` counts this run's photon
+    /// passes.
+    pub render_iterations: u64,
+}
+
+impl PhotonStats {
+    /// Adds one progressive iteration's photon pass: counts and times
+    /// summed, memory the peak, the radius the latest.
+    pub fn add_iteration(&mut self, st: &PhotonStats) {
+        self.global_stored += st.global_stored;
+        self.caustic_stored += st.caustic_stored;
+        self.trace_time += st.trace_time;
+        self.build_time += st.build_time;
+        self.radiance_time += st.radiance_time;
+        self.memory_bytes = self.memory_bytes.max(st.memory_bytes);
+        self.iterations += 1;
+        self.caustic_radius = st.caustic_radius;
+    }
 }
 
 /// Everything the camera pass needs from the photon pass.
@@ -188,21 +216,72 @@ pub struct PhotonMaps {
     pub max_radius: f32,
     /// Set when caustic photons were aimed: q_1 then uses per-photon fluxes.
     pub targets: Option<aim::Targets>,
-    /// The caustic query's fixed radius (progressive iterations); `None`:
-    /// the `nearest` photons within `max_radius`.
-    pub caustic_radius: Option<f32>,
+    /// The fixed radii of the caustic and global estimates (progressive
+    /// iterations); `None`: the `nearest` photons within a largest radius.
+    pub radii: Option<Radii>,
     pub stats: PhotonStats,
 }
 
+/// The query radii of one progressive iteration: each point's `r_0`
+/// scaled by the iteration's `scale2` (fixed before the iteration).
+#[derive(Clone, Debug)]
+pub struct Radii {
+    pub caustic: Arc<RadiusField>,
+    pub global: Arc<RadiusField>,
+    pub scale2: f32,
+    /// Where the global estimate is precomputed (radiance photons).
+    pub global_points: Arc<radiance::Points>,
+}
+
+impl Radii {
+    /// Squared radius of the caustic estimate at `p`.
+    #[inline]
+    pub fn caustic_r2(&self, p: Vec3) -> f32 {
+        self.caustic.r2_at(p) * self.scale2
+    }
+
+    /// Squared radius of the global estimate at `p`.
+    #[inline]
+    pub fn global_r2(&self, p: Vec3) -> f32 {
+        self.global.r2_at(p) * self.scale2
+    }
+
+    /// The largest global radius of this iteration.
+    pub fn global_max(&self) -> f32 {
+        self.global.max_radius() * self.scale2.sqrt()
+    }
+}
+
+/// One global photon in this many becomes a radiance photon.
+pub const RADIANCE_STRIDE: usize = 4;
+
+/// The global map's largest radius relative to the caustic map's.
+pub const GLOBAL_RADIUS_SCALE: f32 = 5.0;
+
 impl PhotonMaps {
-    /// Traces and builds the maps; gives up (`None`) soon after `cancel` is
-    /// set, so an interrupt during a long photon pass ends the render at once.
+    /// Traces and builds the maps, radiance photons from the `nearest`
+    /// photons; gives up (`None`) soon after `cancel` is set, so an
+    /// interrupt during a long photon pass ends the render at once.
     pub fn build(
         scene: &Scene,
         s: &PhotonSettings,
         seed: u64,
         cancel: &AtomicBool,
     ) -> Option<PhotonMaps> {
+        let (mut maps, normals) = Self::trace(scene, s, seed, cancel)?;
+        maps.finish(s, &normals, None);
+        Some(maps)
+    }
+
+    /// Traces the photons and builds the maps' trees; [`PhotonMaps::finish`]
+    /// then builds the radiance photons (`normals`: the global photons'
+    /// surface normals).
+    pub fn trace(
+        scene: &Scene,
+        s: &PhotonSettings,
+        seed: u64,
+        cancel: &AtomicBool,
+    ) -> Option<(PhotonMaps, Vec<Vec3>)> {
         let phi: f32 = scene
             .lights
             .iter()
@@ -238,42 +317,53 @@ impl PhotonMaps {
         let t1 = Instant::now();
         let global = PhotonMap::build(g.photons, s.global_photons);
         let caustic = PhotonMap::build(c.photons, s.caustic_photons);
-        let build_time = t1.elapsed();
-        let t2 = Instant::now();
-        let radiance = if s.radiance_photons && !global.is_empty() {
-            Some(RadiancePhotons::build(
-                &global,
-                &g.normals,
-                4,
-                s.nearest,
-                max_radius * 2.0,
-            ))
-        } else {
-            None
-        };
-        let radiance_time = t2.elapsed();
-        let memory_bytes = global.memory_bytes()
-            + caustic.memory_bytes()
-            + radiance.as_ref().map_or(0, |r| r.memory_bytes());
         let stats = PhotonStats {
             global_stored: global.len(),
             caustic_stored: caustic.len(),
             trace_time,
-            build_time,
-            radiance_time,
-            memory_bytes,
-            iterations: 0,
-            caustic_radius: 0.0,
+            build_time: t1.elapsed(),
+            ..PhotonStats::default()
         };
-        Some(PhotonMaps {
+        let maps = PhotonMaps {
             global,
             caustic,
-            radiance,
+            radiance: None,
             phi,
             max_radius,
             targets,
-            caustic_radius: None,
+            radii: None,
             stats,
-        })
+        };
+        Some((maps, g.normals))
+    }
+
+    /// Sets the query radii (`None`: nearest photons) and builds the
+    /// radiance photons accordingly, if the settings ask for them.
+    pub fn finish(&mut self, s: &PhotonSettings, normals: &[Vec3], radii: Option<Radii>) {
+        let t2 = Instant::now();
+        self.radiance = match &radii {
+            _ if !s.radiance_photons || self.global.is_empty() => None,
+            Some(r) => Some(RadiancePhotons::fixed(
+                &self.global,
+                r.global_points.clone(),
+                r,
+            )),
+            None => Some(RadiancePhotons::build(
+                &self.global,
+                normals,
+                RADIANCE_STRIDE,
+                s.nearest,
+                self.max_radius * 2.0,
+            )),
+        };
+        let st = &mut self.stats;
+        st.radiance_time = t2.elapsed();
+        st.memory_bytes = self.global.memory_bytes()
+            + self.caustic.memory_bytes()
+            + self.radiance.as_ref().map_or(0, |r| r.memory_bytes());
+        st.caustic_radius = radii
+            .as_ref()
+            .map_or(0.0, |r| (r.caustic.median_r2() * r.scale2).sqrt());
+        self.radii = radii;
     }
 }

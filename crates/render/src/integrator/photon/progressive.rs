@@ -1,14 +1,13 @@
 //! The progressive mode (METHOD.md §7; Knaus & Zwicker 2011): the render
 //! runs in iterations; iteration `i` traces fresh photons from a random
 //! stream keyed by `(seed, i)` only, renders `S` samples per pixel with its
-//! maps and frees them. Its caustic estimate uses a disc of radius `r_i`
+//! maps and frees them. Its caustic and global estimates use discs of radii
 //! fixed before the iteration, `r_{i+1}^2 = r_i^2 (i + a) / (i + 1)`, so bias
 //! and variance both vanish as iterations accumulate. This module holds the
-//! settings, the radius sequence, the per-iteration seed, the rule for `r_0`
-//! and the iteration state a checkpoint stores; `run.rs` drives it.
-
-use super::map::PhotonMap;
-use rayon::prelude::*;
+//! settings, the radius sequence, the per-iteration seed and the iteration
+//! state a checkpoint stores; `radius_field.rs` holds `r_0` point by point,
+//! `run.rs` drives the iterations and `budget.rs` chooses the photon counts
+//! under a time budget.
 
 /// Settings of the progressive mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,8 +16,15 @@ pub struct Progressive {
     pub iteration_spp: u32,
     /// `a` of the radius sequence, in (0, 1].
     pub shrink: f32,
-    /// `r_0`; 0: [`initial_radius2`] of the first iteration's caustic map.
+    /// `r_0` of the caustic estimate everywhere; 0: from the first
+    /// iteration's caustic photons, point by point (`radius_field.rs`).
     pub initial_radius: f32,
+    /// Iterations to render (0: as many as the sample count or the time
+    /// budget gives).
+    pub iterations: u32,
+    /// Under a time budget, the share of each iteration's time given to
+    /// photon tracing when the photon counts are not set (0: keep them).
+    pub photon_share: f32,
 }
 
 impl Default for Progressive {
@@ -27,6 +33,8 @@ impl Default for Progressive {
             iteration_spp: 1,
             shrink: 2.0 / 3.0,
             initial_radius: 0.0,
+            iterations: 0,
+            photon_share: 0.5,
         }
     }
 }
@@ -49,53 +57,33 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// Caustic photons sampled for the `r_0` rule.
-const RADIUS_SAMPLES: usize = 1024;
-
-/// The rule for `r_0^2` when no radius is given: the median, over (up to
-/// 1024, evenly strided) stored caustic photons, of the squared distance to
-/// their `k`-th nearest neighbour within `max_radius`, i.e. the radius the
-/// single-map estimate would use where the photons are. `max_radius^2` for
-/// an empty map. Deterministic: the queries and the median do not depend on
-/// thread timing.
-pub fn initial_radius2(map: &PhotonMap, k: usize, max_radius: f32) -> f64 {
-    let n = map.len();
-    if n == 0 {
-        return (max_radius as f64).powi(2);
-    }
-    let stride = n.div_ceil(RADIUS_SAMPLES);
-    let mut r2: Vec<f32> = (0..n)
-        .step_by(stride)
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .map_init(Vec::new, |found, i| {
-            map.knn(map.photon(i as u32).pos(), k, max_radius, found)
-        })
-        .collect();
-    r2.sort_by(f32::total_cmp);
-    r2[r2.len() / 2] as f64
-}
-
 /// Where a progressive render is, as a checkpoint stores it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct IterState {
     /// The current iteration `i`.
     pub index: u64,
     /// Samples per pixel done when it began, and done so far.
     pub start_spp: u32,
     pub spp_done: u32,
-    /// `r_i^2`; 0 until the first iteration's maps set it.
-    pub r2: f64,
+    /// `r_i^2 / r_0^2` = `prod_{j<i} (j + a) / (j + 1)`, the same for every
+    /// point's radius (see `radius_field.rs`); 0 before iteration 0.
+    pub scale2: f64,
+    /// Photons emitted per iteration for the global and the caustic map
+    /// (0 until chosen: the settings', or the time rule's).
+    pub global_photons: u64,
+    pub caustic_photons: u64,
 }
 
 impl IterState {
-    pub const BYTES: usize = 8 + 4 + 4 + 8;
+    pub const BYTES: usize = 8 + 4 + 4 + 8 + 8 + 8;
 
     pub fn encode(&self, out: &mut Vec<u8>) {
         out.extend_from_slice(&self.index.to_le_bytes());
         out.extend_from_slice(&self.start_spp.to_le_bytes());
         out.extend_from_slice(&self.spp_done.to_le_bytes());
-        out.extend_from_slice(&self.r2.to_bits().to_le_bytes());
+        out.extend_from_slice(&self.scale2.to_bits().to_le_bytes());
+        out.extend_from_slice(&self.global_photons.to_le_bytes());
+        out.extend_from_slice(&self.caustic_photons.to_le_bytes());
     }
 
     pub fn decode(b: &[u8]) -> Option<IterState> {
@@ -108,7 +96,9 @@ impl IterState {
             index: u64_at(0),
             start_spp: u32_at(8),
             spp_done: u32_at(12),
-            r2: f64::from_bits(u64_at(16)),
+            scale2: f64::from_bits(u64_at(16)),
+            global_photons: u64_at(24),
+            caustic_photons: u64_at(32),
         })
     }
 }
@@ -155,7 +145,9 @@ mod tests {
             index: 12,
             start_spp: 48,
             spp_done: 50,
-            r2: 1.25e-4,
+            scale2: 0.125,
+            global_photons: 20_000,
+            caustic_photons: 123_000,
         };
         let mut b = Vec::new();
         st.encode(&mut b);

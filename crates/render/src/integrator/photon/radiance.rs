@@ -2,10 +2,21 @@
 //! illumination"): irradiance estimated once at a subset of the photon
 //! positions, then read by a single nearest-neighbour lookup per final-gather
 //! ray instead of a k-nearest density estimate.
+//!
+//! In progressive iterations the points stay those of the first iteration
+//! ([`Points`], shared) and each iteration estimates irradiance there from
+//! its own photons, each point over its own fixed disc. Which point a
+//! lookup reads then depends on the first iteration's photons only, not on
+//! the photons of the estimate it reads: were the points the iteration's
+//! own photons, the nearest one to a lookup would sit beside a gap in them
+//! (no nearer point), and the disc around it would miss those photons, a
+//! bias of about one photon per disc that grows as the discs shrink.
 
-use super::map::{dist2, inclusive, irradiance_knn, KdTree, PhotonMap};
+use super::map::{dist2, inclusive, irradiance_knn, irradiance_within, KdTree, PhotonMap};
+use super::Radii;
 use lumis_math::{Rgb, Vec3};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Points per kd-tree leaf at most: measured best for nearest-one lookups.
 const LEAF: usize = 16;
@@ -13,21 +24,62 @@ const LEAF: usize = 16;
 /// Christensen's normal agreement threshold for a lookup.
 const NORMAL_DOT: f32 = 0.9;
 
-/// Radiance photons in their kd-tree's leaf order (a result index is the
-/// position in `normals` / `irradiance`).
+/// Where radiance photons are: positions and surface normals in the
+/// kd-tree's leaf order (a search result is an index into both).
+#[derive(Debug)]
+pub struct Points {
+    tree: KdTree,
+    pos: Vec<Vec3>,
+    normals: Vec<Vec3>,
+}
+
+impl Points {
+    /// Every `stride`-th photon of `map` (`normals[i]` is the surface
+    /// normal where photon `i` of the `Vec` given to [`PhotonMap::build`]
+    /// was stored).
+    pub fn from_map(map: &PhotonMap, normals: &[Vec3], stride: usize) -> Points {
+        assert_eq!(normals.len(), map.len(), "one normal per photon");
+        let idx: Vec<u32> = (0..map.len() as u32).step_by(stride.max(1)).collect();
+        let mut tree = KdTree::build(idx.iter().map(|&i| map.photon(i).pos()), LEAF);
+        let order = tree.reindex_to_leaf_order();
+        let at = |j: u32| idx[j as usize];
+        Points {
+            tree,
+            pos: order.iter().map(|&j| map.photon(at(j)).pos()).collect(),
+            normals: order
+                .iter()
+                .map(|&j| normals[map.original_index(at(j)) as usize].normalize_or_zero())
+                .collect(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pos.is_empty()
+    }
+
+    pub fn memory_bytes(&self) -> usize {
+        self.tree.memory_bytes() + (self.pos.capacity() + self.normals.capacity()) * 12
+    }
+}
+
+/// Irradiance at [`Points`].
 #[derive(Debug)]
 pub struct RadiancePhotons {
-    tree: KdTree,
-    normals: Vec<Vec3>,
+    points: Arc<Points>,
     irradiance: Vec<Rgb>,
+    /// Progressive iterations: each point's squared disc radius, which also
+    /// bounds the distance at which it may be read (empty otherwise).
+    r2: Vec<f32>,
 }
 
 impl RadiancePhotons {
-    /// Irradiance at every `stride`-th photon of `map` (`normals[i]` is the
-    /// surface normal where photon `i` of the `Vec` given to
-    /// [`PhotonMap::build`] was stored) from the `k` nearest
-    /// photons within `max_radius` arriving on the normal's side. Parallel and
-    /// deterministic.
+    /// Irradiance at every `stride`-th photon of `map` from the `k` nearest
+    /// photons within `max_radius` (itself included) arriving on the
+    /// normal's side. Parallel and deterministic.
     pub fn build(
         map: &PhotonMap,
         normals: &[Vec3],
@@ -35,35 +87,35 @@ impl RadiancePhotons {
         k: usize,
         max_radius: f32,
     ) -> RadiancePhotons {
-        assert_eq!(normals.len(), map.len(), "one normal per photon");
-        let stride = stride.max(1);
-        let count = map.len().div_ceil(stride);
-        let mut estimates: Vec<(Vec3, Vec3, Rgb)> = Vec::with_capacity(count);
-        (0..count)
-            .into_par_iter()
-            .with_min_len(256)
-            .map_init(Vec::new, |scratch, j| {
-                let i = j * stride;
-                let p = map.photon(i as u32).pos();
-                let n = normals[map.original_index(i as u32) as usize].normalize_or_zero();
-                let (e, _) = irradiance_knn(map, p, n, k, max_radius, scratch);
-                (p, n, e)
-            })
-            .collect_into_vec(&mut estimates);
-        let mut tree = KdTree::build(estimates.iter().map(|e| e.0), LEAF);
-        let order = tree.reindex_to_leaf_order();
-        let normals = order.iter().map(|&i| estimates[i as usize].1).collect();
-        let irradiance = order.iter().map(|&i| estimates[i as usize].2).collect();
+        let points = Arc::new(Points::from_map(map, normals, stride));
+        let irradiance = par_map(&points, |p, n, scratch| {
+            irradiance_knn(map, p, n, k, max_radius, scratch).0
+        });
         RadiancePhotons {
-            tree,
-            normals,
+            points,
             irradiance,
+            r2: Vec::new(),
+        }
+    }
+
+    /// Irradiance at `points` from every photon of `map` within the
+    /// iteration's global radius there (progressive iterations).
+    pub fn fixed(map: &PhotonMap, points: Arc<Points>, radii: &Radii) -> RadiancePhotons {
+        let r2: Vec<f32> = points.pos.iter().map(|&p| radii.global_r2(p)).collect();
+        let irradiance = par_map(&points, |p, n, scratch| {
+            irradiance_within(map, p, n, radii.global_r2(p).sqrt(), scratch)
+        });
+        RadiancePhotons {
+            points,
+            irradiance,
+            r2,
         }
     }
 
     /// Irradiance of the nearest radiance photon within `max_radius` of `p`
-    /// whose normal agrees with unit `n` (dot > 0.9), or None. Exitant
-    /// radiance of a diffuse surface is then `E * albedo / pi`.
+    /// whose normal agrees with unit `n` (dot > 0.9) and, in progressive
+    /// iterations, within its own disc's radius, or None. Exitant radiance
+    /// of a diffuse surface is then `E * albedo / pi`.
     pub fn irradiance(&self, p: Vec3, n: Vec3, max_radius: f32) -> Option<Rgb> {
         if !(max_radius >= 0.0) {
             return None;
@@ -71,12 +123,14 @@ impl RadiancePhotons {
         let q = p.to_array();
         let mut bound = inclusive(max_radius * max_radius);
         let mut best = None;
-        self.tree.search(q, &mut bound, |pts, bound| {
+        let normals = &self.points.normals;
+        self.points.tree.search(q, &mut bound, |pts, bound| {
             for pt in pts {
                 let d2 = dist2(pt, q);
                 if d2 < *bound {
                     let i = pt[3].to_bits() as usize;
-                    if self.normals[i].dot(n) > NORMAL_DOT {
+                    let inside = self.r2.get(i).is_none_or(|&r2| d2 <= r2);
+                    if inside && normals[i].dot(n) > NORMAL_DOT {
                         *bound = d2;
                         best = Some(i);
                     }
@@ -87,16 +141,33 @@ impl RadiancePhotons {
     }
 
     pub fn len(&self) -> usize {
-        self.normals.len()
+        self.points.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.normals.is_empty()
+        self.points.is_empty()
     }
 
+    /// Bytes of this iteration's values and of the points they share.
     pub fn memory_bytes(&self) -> usize {
-        self.tree.memory_bytes()
-            + self.normals.capacity() * std::mem::size_of::<Vec3>()
+        self.points.memory_bytes()
             + self.irradiance.capacity() * std::mem::size_of::<Rgb>()
+            + self.r2.capacity() * 4
     }
+}
+
+/// `f(position, normal, scratch)` at every point, in parallel, in order.
+fn par_map(
+    points: &Points,
+    f: impl Fn(Vec3, Vec3, &mut Vec<(u32, f32)>) -> Rgb + Sync,
+) -> Vec<Rgb> {
+    let mut out = Vec::with_capacity(points.len());
+    (0..points.len())
+        .into_par_iter()
+        .with_min_len(256)
+        .map_init(Vec::new, |scratch, i| {
+            f(points.pos[i], points.normals[i], scratch)
+        })
+        .collect_into_vec(&mut out);
+    out
 }

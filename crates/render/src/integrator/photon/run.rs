@@ -8,36 +8,66 @@
 //! iteration: the previous maps are freed first, so memory stays at one
 //! iteration's maps, and `alpha` is the iteration's samples per pixel.
 
+use super::budget::choose_counts;
 use super::gather::{self, PhotonCtx};
-use super::progressive::{initial_radius2, iteration_seed, next_radius2, IterState};
-use super::{PhotonMaps, PhotonSettings, PhotonStats};
+use super::progressive::{iteration_seed, next_radius2, IterState, Progressive};
+use super::radiance::Points;
+use super::radius_field::RadiusField;
+use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
 use crate::geometry::Ray;
 use crate::integrator::driver::{PassReport, Start};
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler};
+use lumis_math::{Rgb, Sampler, Vec3};
 use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 pub struct PhotonRun<'a> {
     scene: &'a Scene,
     settings: &'a PhotonSettings,
-    seed: u64,
-    pixel_spread: f32,
-    /// Samples per pixel aimed at (0: until the time budget ends).
-    spp_target: u32,
+    start: Start,
     maps: Option<PhotonMaps>,
     /// `alpha` at the first camera hit for the next pass (seed, A.10).
     alpha: f32,
     /// The progressive mode's iteration (`None` without it).
     iter: Option<IterState>,
-    /// Under a time budget: the current iteration runs to the end, since a
-    /// fresh photon pass would not fit in the time left.
-    last: bool,
     /// Progressive: the photon passes' figures summed over iterations.
     totals: PhotonStats,
     /// Progressive: the latest photon pass's duration.
     photon_time: Duration,
+    /// Progressive: every point's initial radii (from iteration 0).
+    fields: Option<RadiusFields>,
+}
+
+/// The initial radii of the caustic and global estimates, point by point.
+struct RadiusFields {
+    caustic: Arc<RadiusField>,
+    global: Arc<RadiusField>,
+    global_points: Arc<Points>,
+}
+
+impl RadiusFields {
+    /// From iteration 0's maps: the `nearest`-th photon's distance, up to
+    /// the single map's largest radii (the caustic map's, and the global
+    /// radiance photons'); a given `initialradius` sets the caustic one.
+    fn new(
+        maps: &PhotonMaps,
+        normals: &[Vec3],
+        s: &PhotonSettings,
+        p: &Progressive,
+    ) -> RadiusFields {
+        let caustic = match p.initial_radius > 0.0 {
+            true => RadiusField::constant(p.initial_radius),
+            false => RadiusField::from_map(&maps.caustic, s.nearest, maps.max_radius),
+        };
+        let global_max = maps.max_radius * GLOBAL_RADIUS_SCALE;
+        RadiusFields {
+            caustic: Arc::new(caustic),
+            global: Arc::new(RadiusField::from_map(&maps.global, s.nearest, global_max)),
+            global_points: Arc::new(Points::from_map(&maps.global, normals, RADIANCE_STRIDE)),
+        }
+    }
 }
 
 impl<'a> PhotonRun<'a> {
@@ -55,25 +85,18 @@ impl<'a> PhotonRun<'a> {
         let iter = settings.progressive.map(|_| {
             saved
                 .and_then(|b| IterState::decode(b.get(4..)?))
-                .unwrap_or(IterState {
-                    index: 0,
-                    start_spp: 0,
-                    spp_done: 0,
-                    r2: 0.0,
-                })
+                .unwrap_or_default()
         });
         PhotonRun {
             scene,
             settings,
-            seed: start.seed,
-            pixel_spread: start.pixel_spread,
-            spp_target: start.spp,
+            start: *start,
             maps: None,
             alpha,
             iter,
-            last: false,
             totals: PhotonStats::default(),
             photon_time: Duration::ZERO,
+            fields: None,
         }
     }
 
@@ -84,19 +107,27 @@ impl<'a> PhotonRun<'a> {
             return self.begin_iteration(cancel);
         }
         if self.maps.is_none() {
-            self.maps = PhotonMaps::build(self.scene, self.settings, self.seed, cancel);
+            self.maps = PhotonMaps::build(self.scene, self.settings, self.start.seed, cancel);
         }
         self.maps.is_some()
+    }
+
+    /// `S`, the samples per pixel of one iteration.
+    fn iteration_spp(&self) -> u32 {
+        self.settings
+            .progressive
+            .map_or(1, |p| p.iteration_spp.max(1))
     }
 
     /// Progressive: moves on to the next iteration when this one has had its
     /// samples, and builds the iteration's maps if they are not there.
     fn begin_iteration(&mut self, cancel: &AtomicBool) -> bool {
         let p = self.settings.progressive.expect("progressive settings");
-        let it = self.iter.as_mut().expect("progressive state");
-        if !self.last && it.spp_done >= it.start_spp.saturating_add(p.iteration_spp.max(1)) {
+        let s_iter = self.iteration_spp();
+        let mut it = self.iter.expect("progressive state");
+        if it.spp_done >= it.start_spp.saturating_add(s_iter) {
             self.maps = None;
-            it.r2 = next_radius2(it.r2, it.index, p.shrink as f64);
+            it.scale2 = next_radius2(it.scale2, it.index, p.shrink as f64);
             it.index += 1;
             it.start_spp = it.spp_done;
         }
@@ -104,37 +135,73 @@ impl<'a> PhotonRun<'a> {
             return true;
         }
         let t0 = Instant::now();
-        let seed = iteration_seed(self.seed, it.index);
-        let Some(mut maps) = PhotonMaps::build(self.scene, self.settings, seed, cancel) else {
+        if it.global_photons == 0 && it.caustic_photons == 0 {
+            let Some(c) = self.photon_counts(cancel) else {
+                return false;
+            };
+            (it.global_photons, it.caustic_photons) = c;
+            it.scale2 = 1.0;
+        }
+        let mut s = self.settings.clone();
+        (s.global_photons, s.caustic_photons) = (it.global_photons, it.caustic_photons);
+        let trace =
+            |i| PhotonMaps::trace(self.scene, &s, iteration_seed(self.start.seed, i), cancel);
+        let Some((mut maps, normals)) = trace(it.index) else {
             return false;
         };
-        if it.r2 <= 0.0 {
-            it.r2 = if p.initial_radius > 0.0 {
-                (p.initial_radius as f64).powi(2)
-            } else {
-                initial_radius2(&maps.caustic, self.settings.nearest, maps.max_radius)
+        if self.fields.is_none() {
+            // The radii come from iteration 0's photons (traced again when
+            // a checkpoint resumes a later iteration).
+            let fields = match it.index {
+                0 => RadiusFields::new(&maps, &normals, &s, &p),
+                _ => match trace(0) {
+                    Some((first, n)) => RadiusFields::new(&first, &n, &s, &p),
+                    None => return false,
+                },
             };
+            self.fields = Some(fields);
         }
-        maps.caustic_radius = Some(it.r2.sqrt() as f32);
+        let f = self.fields.as_ref().expect("radius fields");
+        let radii = Radii {
+            caustic: f.caustic.clone(),
+            global: f.global.clone(),
+            scale2: it.scale2 as f32,
+            global_points: f.global_points.clone(),
+        };
+        maps.finish(&s, &normals, Some(radii));
         // The samples per pixel that will read these maps.
-        let s = p.iteration_spp.max(1);
-        self.alpha = match self.spp_target {
-            0 => s,
-            t => s.min(t.saturating_sub(it.start_spp)).max(1),
+        self.alpha = match self.start.spp {
+            0 => s_iter,
+            t => s_iter.min(t.saturating_sub(it.start_spp)).max(1),
         } as f32;
-        let st = &maps.stats;
-        let tot = &mut self.totals;
-        tot.global_stored += st.global_stored;
-        tot.caustic_stored += st.caustic_stored;
-        tot.trace_time += st.trace_time;
-        tot.build_time += st.build_time;
-        tot.radiance_time += st.radiance_time;
-        tot.memory_bytes = tot.memory_bytes.max(st.memory_bytes);
-        tot.iterations += 1;
-        tot.caustic_radius = it.r2.sqrt() as f32;
+        self.totals.add_iteration(&maps.stats);
+        self.totals.iteration_photons = (it.global_photons, it.caustic_photons);
+        self.totals.render_iterations = it.index + 1;
         self.maps = Some(maps);
+        self.iter = Some(it);
         self.photon_time = t0.elapsed();
         true
+    }
+
+    /// Photon counts per iteration: the settings', or under a time budget
+    /// the time rule's (`budget.rs`) when the settings leave them open.
+    fn photon_counts(&self, cancel: &AtomicBool) -> Option<(u64, u64)> {
+        let s = self.settings;
+        let p = s.progressive.expect("progressive settings");
+        if self.start.time_limit.is_none() || !(p.photon_share > 0.0) {
+            return Some((s.global_photons, s.caustic_photons));
+        }
+        let st = &self.start;
+        let share = p.photon_share as f64;
+        choose_counts(
+            self.scene,
+            s,
+            share,
+            self.iteration_spp(),
+            st.crop,
+            st.seed,
+            cancel,
+        )
     }
 
     #[inline]
@@ -148,16 +215,31 @@ impl<'a> PhotonRun<'a> {
             maps,
             s: self.settings,
             alpha_first: self.alpha,
-            pixel_spread: self.pixel_spread,
+            pixel_spread: self.start.pixel_spread,
         };
         gather::li(&ctx, ray, sampler, rays)
     }
 
+    /// The time the render's next indivisible step would take after the
+    /// pass `r` reports, for the driver's time budget: one pass, or in the
+    /// progressive mode, at an iteration's end, the next whole iteration
+    /// (its photon pass and its passes); `None` inside an iteration, which
+    /// a time budget never cuts.
+    pub fn next_cost(&self, r: &PassReport, pass_time: Duration) -> Option<Duration> {
+        let Some(it) = &self.iter else {
+            return Some(pass_time);
+        };
+        let s = self.iteration_spp();
+        if r.spp_done < it.start_spp.saturating_add(s) {
+            return None;
+        }
+        let per_pass = r.pass_time_sum / r.passes_here.max(1);
+        Some(self.photon_time + per_pass * s)
+    }
+
     /// With only a time budget, predicts the render's samples per pixel
     /// from the time per sample so far. Progressive: frees the maps of a
-    /// finished iteration, unless under a time budget the next photon pass
-    /// and a camera pass would not fit in the time left; then the current
-    /// maps serve the passes to the end.
+    /// finished iteration.
     pub fn after_pass(&mut self, r: &PassReport) {
         if let Some(it) = self.iter.as_mut() {
             it.spp_done = r.spp_done;
@@ -165,17 +247,9 @@ impl<'a> PhotonRun<'a> {
                 .settings
                 .progressive
                 .map_or(1, |p| p.iteration_spp.max(1));
-            if self.last || r.stopping || it.spp_done < it.start_spp.saturating_add(s) {
-                return;
+            if it.spp_done >= it.start_spp.saturating_add(s) {
+                self.maps = None;
             }
-            if let Some(t) = r.time_limit {
-                let per_pass = r.pass_time_sum / r.passes_here;
-                if r.elapsed + self.photon_time + per_pass > t {
-                    self.last = true;
-                    return;
-                }
-            }
-            self.maps = None;
             return;
         }
         if let (Some(t), false, 0) = (r.time_limit, r.stopping, r.spp_target) {

@@ -1,0 +1,154 @@
+//! The progressive mode's time rule: under a time budget, when the photon
+//! counts are not set, the renderer chooses them so that photon tracing
+//! takes a fixed share of every iteration's time (`photonshare`, by default
+//! one half). Photon tracing and camera samples attack different errors
+//! (the photon maps' variance and bias; the gather rays', the direct light's
+//! and the pixel's), and the balance that minimises the sum is a property of
+//! the scene's cost, which only timing can see: a scene whose photons mostly
+//! miss the specular objects gets many cheap ones, a scene of heavy camera
+//! paths more photons per sample.
+//!
+//! The counts are chosen once, before iteration 0, from a short probe (a
+//! sixteenth of the photons, traced with a stream no iteration uses, and a
+//! camera sample at one pixel in 32), and kept for every iteration, so the
+//! render is an ordinary fixed-count one: the counts and the iteration count
+//! it reached reproduce it exactly without a time budget.
+
+use super::gather::{self, PhotonCtx};
+use super::progressive::iteration_seed;
+use super::{check_memory, PhotonMaps, PhotonSettings};
+use crate::film::PixelBounds;
+use crate::integrator::RayCounts;
+use crate::scene::Scene;
+use lumis_math::{Sampler, SamplerKind, Vec2};
+use rayon::prelude::*;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+/// The probe traces this fraction of the photon counts.
+const PROBE_PHOTONS: u64 = 16;
+/// ... and renders one camera sample at one pixel in this many.
+const PROBE_PIXELS: u64 = 32;
+/// The counts stay within this factor of the settings'.
+const MAX_SCALE: f64 = 64.0;
+
+/// The factor by which to scale the photon counts so that photon tracing
+/// (`photon_secs` at the settings' counts) takes `share` of an iteration
+/// whose camera samples take `camera_secs`; within [1/64, 64].
+pub fn photon_scale(share: f64, photon_secs: f64, camera_secs: f64) -> f64 {
+    let known = photon_secs > 0.0 && camera_secs > 0.0;
+    if !(share > 0.0 && share < 1.0 && known) {
+        return 1.0;
+    }
+    (share / (1.0 - share) * camera_secs / photon_secs).clamp(1.0 / MAX_SCALE, MAX_SCALE)
+}
+
+/// `n` rounded to two significant digits (at least 1000 unless 0), so the
+/// counts read well in a summary and on a command line.
+pub fn round_count(n: f64) -> u64 {
+    if !(n >= 1.0) {
+        return 0;
+    }
+    let n = n.max(1000.0);
+    let unit = 10f64.powi(n.log10().floor() as i32 - 1);
+    ((n / unit).round() * unit) as u64
+}
+
+/// Per-iteration photon counts `(global, caustic)` for a time budget:
+/// the settings' counts scaled by [`photon_scale`] from a probe, then
+/// lowered until the maps fit in memory. `None` if interrupted.
+pub fn choose_counts(
+    scene: &Scene,
+    s: &PhotonSettings,
+    share: f64,
+    iteration_spp: u32,
+    crop: PixelBounds,
+    seed: u64,
+    cancel: &AtomicBool,
+) -> Option<(u64, u64)> {
+    let mut probe = s.clone();
+    probe.global_photons = s.global_photons.div_ceil(PROBE_PHOTONS);
+    probe.caustic_photons = s.caustic_photons.div_ceil(PROBE_PHOTONS);
+    let t = Instant::now();
+    let maps = PhotonMaps::build(scene, &probe, iteration_seed(seed, u64::MAX), cancel)?;
+    let photon_secs = t.elapsed().as_secs_f64() * PROBE_PHOTONS as f64;
+    let camera_secs = camera_probe(scene, s, &maps, crop, seed) * iteration_spp as f64;
+    let k = photon_scale(share, photon_secs, camera_secs);
+    let mut counts = (
+        round_count(s.global_photons as f64 * k),
+        round_count(s.caustic_photons as f64 * k),
+    );
+    loop {
+        let mut fit = s.clone();
+        (fit.global_photons, fit.caustic_photons) = counts;
+        if check_memory(&fit).is_ok() || counts.0 + counts.1 <= 2000 {
+            return Some(counts);
+        }
+        counts = (
+            round_count(counts.0 as f64 / 2.0),
+            round_count(counts.1 as f64 / 2.0),
+        );
+    }
+}
+
+/// Seconds one sample per pixel over `crop` would take, from one sample
+/// at every [`PROBE_PIXELS`]-th pixel (random positions inside them).
+fn camera_probe(
+    scene: &Scene,
+    s: &PhotonSettings,
+    maps: &PhotonMaps,
+    crop: PixelBounds,
+    seed: u64,
+) -> f64 {
+    let (w, h) = (crop.x1 - crop.x0, crop.y1 - crop.y0);
+    let pixels = w as u64 * h as u64;
+    let n = pixels.div_ceil(PROBE_PIXELS).max(1);
+    let ctx = PhotonCtx {
+        scene,
+        maps,
+        s,
+        alpha_first: 1.0,
+        pixel_spread: 1.0,
+    };
+    let t = Instant::now();
+    (0..n).into_par_iter().for_each(|j| {
+        let i = j * PROBE_PIXELS % pixels.max(1);
+        let (px, py) = (
+            crop.x0 + (i % w as u64) as u32,
+            crop.y0 + (i / w as u64) as u32,
+        );
+        let mut sampler = Sampler::new(SamplerKind::Independent, seed ^ 0x9e0b);
+        sampler.start_pixel_sample(px, py, 0);
+        let p_film = Vec2::new(px as f32, py as f32) + sampler.get_2d();
+        let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
+        let mut rays = RayCounts::default();
+        std::hint::black_box(gather::li(&ctx, ray, &mut sampler, &mut rays));
+    });
+    t.elapsed().as_secs_f64() * pixels as f64 / n as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scale_gives_photons_their_share_of_the_iteration() {
+        // Photons 1 s at the settings' counts, camera 3 s: for half the
+        // time, 3x the photons; for a quarter, 1x.
+        assert!((photon_scale(0.5, 1.0, 3.0) - 3.0).abs() < 1e-12);
+        assert!((photon_scale(0.25, 1.0, 3.0) - 1.0).abs() < 1e-12);
+        // Clamped, and neutral when nothing is known.
+        assert_eq!(photon_scale(0.5, 1e-9, 1e3), 64.0);
+        assert_eq!(photon_scale(0.5, 1e3, 1e-9), 1.0 / 64.0);
+        assert_eq!(photon_scale(0.0, 1.0, 3.0), 1.0);
+        assert_eq!(photon_scale(0.5, 0.0, 3.0), 1.0);
+    }
+
+    #[test]
+    fn counts_round_to_two_digits() {
+        assert_eq!(round_count(123_456.0), 120_000);
+        assert_eq!(round_count(1_560_000.0), 1_600_000);
+        assert_eq!(round_count(10.0), 1000);
+        assert_eq!(round_count(0.0), 0);
+    }
+}
