@@ -125,13 +125,15 @@ fn command_line_parameters_are_located_and_reported_like_the_files() {
             "1000",
             "--caustic-photons",
             "1000",
+            "--progressive",
+            "false",
             "--iteration-spp",
             "4",
         ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
-        stderr(&o).contains("`iterationspp` has no effect without"),
+        stderr(&o).contains("`iterationspp` has no effect with"),
         "{}",
         stderr(&o)
     );

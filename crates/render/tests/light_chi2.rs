@@ -213,7 +213,7 @@ fn area_emission_directions() {
 #[test]
 fn spot_emission_directions() {
     let l = load(
-        "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nLightSource \"spot\" \"point3 from\" [ 0 0 0 ] \"point3 to\" [ 1 1 0 ] \"float coneangle\" [ 35 ] \"float conedelta\" [ 10 ]\n",
+        "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nLightSource \"spot\" \"point3 from\" [ 0 0 0 ] \"point3 to\" [ 1 1 0 ] \"float coneangle\" [ 35 ] \"float conedeltaangle\" [ 10 ]\n",
         &Default::default(),
     );
     let axis = Vec3::new(1.0, 1.0, 0.0).normalize();

@@ -19,9 +19,14 @@ use lumis_render::load::{load_path, Overrides};
 const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
 const REF_SPP: u32 = 1_048_576;
 
+/// The single photon map (these tests measure its estimates; the
+/// progressive mode's are in `photon_progressive.rs`).
 fn ov(integrator: &str) -> Overrides {
     let mut o = Overrides::default();
     o.crop_from(CROP, "test").integrator(integrator);
+    if integrator == "photon" {
+        o.integrator_param("bool progressive", "false");
+    }
     o
 }
 

@@ -47,7 +47,7 @@ fn point_spot_and_area_lights_emit_their_power() {
     let (start, end) = ((25f64).to_radians().cos(), (30f64).to_radians().cos());
     let spot = 2.0 * std::f64::consts::PI * ((1.0 - start) + (start - end) / 2.0);
     // Spot photons are uniform in the outer cone and weighted by the falloff: a Monte Carlo sum.
-    check("spot", first_hit_flux(&format!("LightSource \"spot\" \"rgb I\" [ 1 1 1 ] \"float coneangle\" [ 30 ] \"float conedelta\" [ 5 ]\n{ENCLOSURE}")), spot, 0.01);
+    check("spot", first_hit_flux(&format!("LightSource \"spot\" \"rgb I\" [ 1 1 1 ] \"float coneangle\" [ 30 ] \"float conedeltaangle\" [ 5 ]\n{ENCLOSURE}")), spot, 0.01);
     let area = PI as f64 * 4.0 * PI as f64 * 0.04;
     check("area sphere", first_hit_flux(&format!("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" [ 0.2 ]\nAttributeEnd\n{ENCLOSURE}")), area, 1e-3);
 }

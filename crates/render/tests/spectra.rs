@@ -124,7 +124,7 @@ fn light_power_and_illuminance_keep_scale_and_count_rgb_as_white() {
     let l = load(
         &format!(
             "{HEAD}LightSource \"spot\" \"blackbody I\" [ 4000 ] \"float scale\" [ 2 ] \
-             \"float power\" [ 30 ] \"float coneangle\" [ 40 ] \"float conedelta\" [ 10 ]\n"
+             \"float power\" [ 30 ] \"float coneangle\" [ 40 ] \"float conedeltaangle\" [ 10 ]\n"
         ),
         &Default::default(),
     );

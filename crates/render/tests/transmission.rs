@@ -124,12 +124,13 @@ fn thin_dielectric_caustic_under_a_spot_light() {
     let text = format!(
         r#"Integrator "photon" "integer maxdepth" [ 5 ] "integer photons" [ 0 ]
   "integer causticphotons" [ 1000000 ] "integer nearest" [ 200 ] "float maxradius" [ 0.05 ]
+  "bool progressive" false
 {}
 LookAt 0 0 0.5  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 4 ]
 WorldBegin
 LightSource "spot" "point3 from" [ 0 0 {d} ] "point3 to" [ 0 0 0 ] "rgb I" [ {i} {i} {i} ]
-  "float coneangle" [ 2 ] "float conedelta" [ 0.5 ]
+  "float coneangle" [ 2 ] "float conedeltaangle" [ 0.5 ]
 AttributeBegin
 Material "thindielectric" "float eta" [ 1.5 ]
 {}
@@ -282,7 +283,7 @@ fn thin_sheet_caustic_modes_match_path() {
     let scene = |integrator: &str, caustics: &str| {
         format!(
             r#"Integrator "{integrator}" "integer maxdepth" [ 6 ] "string caustics" "{caustics}"
-  "integer causticphotons" [ 400000 ]
+  "integer causticphotons" [ 400000 ] "bool progressive" false
 {}
 LookAt 0 0 1  0 0 0  0 1 0
 Camera "perspective" "float fov" [ 50 ]
@@ -308,7 +309,7 @@ Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
         let text = scene(integrator, caustics);
         let text = if integrator == "path" {
             text.replace(r#""string caustics" "mis""#, "")
-                .replace(r#""integer causticphotons" [ 400000 ]"#, "")
+                .replace(r#""integer causticphotons" [ 400000 ] "bool progressive" false"#, "")
         } else {
             text
         };
@@ -323,7 +324,7 @@ Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
     assert!(p > 0.01, "the floor is lit: {p}");
     // The single map, and the progressive mode (4 iterations of 100k
     // caustic photons, each with its own maps and a shrinking radius).
-    let progressive = r#""integer causticphotons" [ 400000 ]"#;
+    let progressive = r#""integer causticphotons" [ 400000 ] "bool progressive" false"#;
     let iterations = r#""integer causticphotons" [ 100000 ] "bool progressive" true "integer iterationspp" [ 4 ]"#;
     for (mode, prog) in ["mis", "photons", "gather"]
         .into_iter()

@@ -38,7 +38,7 @@ pub fn build_lights(
                 let from = p.get_point3("from", Vec3::ZERO)?;
                 let to = p.get_point3("to", Vec3::Z)?;
                 let cone = p.get_float("coneangle", 30.0)?;
-                let delta = p.get_float("conedelta", 5.0)?;
+                let delta = p.get_float("conedeltaangle", 5.0)?;
                 let dir = xf.vector(to - from).normalize_or_zero();
                 if dir == Vec3::ZERO {
                     return Err(Diagnostic::error(
@@ -69,7 +69,7 @@ pub fn build_lights(
                         "from",
                         "to",
                         "coneangle",
-                        "conedelta",
+                        "conedeltaangle",
                     ],
                 );
                 Light::Spot(l)

@@ -327,7 +327,7 @@ fn build_integrator(
                     e.params.mark_used(name);
                     w.push(Diagnostic::warning(
                         &loc,
-                        format!("`{name}` has no effect without `\"bool progressive\" true`"),
+                        format!("`{name}` has no effect with `\"bool progressive\" false`"),
                     ));
                 }
             }

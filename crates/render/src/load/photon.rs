@@ -77,9 +77,10 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.kernel = choice(e, "kernel", "none", "kernel", kernel)?;
     s.radiance_photons = p.get_bool("radiancephotons", s.radiance_photons)?;
     s.aim_caustics = p.get_bool("aimcaustics", s.aim_caustics)?;
-    if p.get_bool("progressive", false)? {
-        s.progressive = Some(progressive(e)?);
-    }
+    s.progressive = match p.get_bool("progressive", true)? {
+        true => Some(progressive(e)?),
+        false => None,
+    };
     if !(s.max_radius >= 0.0) {
         return Err(Diagnostic::error(
             &p.loc_of("maxradius").unwrap_or(e.loc.clone()),

@@ -8,11 +8,12 @@
 //! miss the specular objects gets many cheap ones, a scene of heavy camera
 //! paths more photons per sample.
 //!
-//! The counts are chosen once, before iteration 0, from a short probe (a
-//! sixteenth of the photons, traced with a stream no iteration uses, and a
-//! camera sample at one pixel in 32), and kept for every iteration, so the
-//! render is an ordinary fixed-count one: the counts and the iteration count
-//! it reached reproduce it exactly without a time budget.
+//! The counts are chosen once, before iteration 0, from short probes (photon
+//! passes at two small fractions of the counts, with a stream no iteration
+//! uses, for the fixed and the per-photon cost; camera samples at one pixel
+//! in 32 or more), and kept for every iteration, so the render is an
+//! ordinary fixed-count one: the counts and the iteration count it reached
+//! reproduce it exactly without a time budget.
 
 use super::gather::{self, PhotonCtx};
 use super::progressive::iteration_seed;
@@ -25,22 +26,25 @@ use rayon::prelude::*;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-/// The probe traces this fraction of the photon counts.
-const PROBE_PHOTONS: u64 = 16;
-/// ... and renders one camera sample at one pixel in this many.
+/// A camera sample at one pixel in this many, at most, for the probe.
 const PROBE_PIXELS: u64 = 32;
+/// Probes are lengthened until they take this long (seconds), so fixed
+/// costs and timer noise do not dominate them.
+const PROBE_SECS: f64 = 0.04;
 /// The counts stay within this factor of the settings'.
 const MAX_SCALE: f64 = 64.0;
 
-/// The factor by which to scale the photon counts so that photon tracing
-/// (`photon_secs` at the settings' counts) takes `share` of an iteration
-/// whose camera samples take `camera_secs`; within [1/64, 64].
-pub fn photon_scale(share: f64, photon_secs: f64, camera_secs: f64) -> f64 {
-    let known = photon_secs > 0.0 && camera_secs > 0.0;
+/// The factor by which to scale the photon counts so that photon tracing,
+/// `fixed + per_unit * k` seconds at `k` times the settings' counts, takes
+/// `share` of an iteration whose camera samples take `camera_secs`; within
+/// [1/64, 64].
+pub fn photon_scale(share: f64, fixed: f64, per_unit: f64, camera_secs: f64) -> f64 {
+    let known = per_unit > 0.0 && camera_secs > 0.0 && fixed >= 0.0;
     if !(share > 0.0 && share < 1.0 && known) {
         return 1.0;
     }
-    (share / (1.0 - share) * camera_secs / photon_secs).clamp(1.0 / MAX_SCALE, MAX_SCALE)
+    let target = share / (1.0 - share) * camera_secs;
+    ((target - fixed) / per_unit).clamp(1.0 / MAX_SCALE, MAX_SCALE)
 }
 
 /// `n` rounded to two significant digits (at least 1000 unless 0), so the
@@ -55,7 +59,7 @@ pub fn round_count(n: f64) -> u64 {
 }
 
 /// Per-iteration photon counts `(global, caustic)` for a time budget:
-/// the settings' counts scaled by [`photon_scale`] from a probe, then
+/// the settings' counts scaled by [`photon_scale`] from probes, then
 /// lowered until the maps fit in memory. `None` if interrupted.
 pub fn choose_counts(
     scene: &Scene,
@@ -66,14 +70,31 @@ pub fn choose_counts(
     seed: u64,
     cancel: &AtomicBool,
 ) -> Option<(u64, u64)> {
-    let mut probe = s.clone();
-    probe.global_photons = s.global_photons.div_ceil(PROBE_PHOTONS);
-    probe.caustic_photons = s.caustic_photons.div_ceil(PROBE_PHOTONS);
-    let t = Instant::now();
-    let maps = PhotonMaps::build(scene, &probe, iteration_seed(seed, u64::MAX), cancel)?;
-    let photon_secs = t.elapsed().as_secs_f64() * PROBE_PHOTONS as f64;
+    // Photon passes (traces, trees, radiance photons) at fractions f and 4f
+    // of the counts: a line through the two gives the fixed and per-photon
+    // costs. A stream no iteration uses.
+    let probe_seed = iteration_seed(seed, u64::MAX);
+    let pass = |f: f64| -> Option<(f64, PhotonMaps)> {
+        let mut probe = s.clone();
+        probe.global_photons = (s.global_photons as f64 * f).ceil() as u64;
+        probe.caustic_photons = (s.caustic_photons as f64 * f).ceil() as u64;
+        let t = Instant::now();
+        let maps = PhotonMaps::build(scene, &probe, probe_seed, cancel)?;
+        Some((t.elapsed().as_secs_f64(), maps))
+    };
+    let mut f = 1.0 / 256.0;
+    let (t1, t4, maps) = loop {
+        let (t1, _) = pass(f)?;
+        let (t4, maps) = pass(4.0 * f)?;
+        if t4 >= PROBE_SECS || f >= 0.25 {
+            break (t1, t4, maps);
+        }
+        f *= 4.0;
+    };
+    let per_unit = ((t4 - t1) / (3.0 * f)).max(t4 / (4.0 * f) * 0.5);
+    let fixed = (t1 - per_unit * f).max(0.0);
     let camera_secs = camera_probe(scene, s, &maps, crop, seed) * iteration_spp as f64;
-    let k = photon_scale(share, photon_secs, camera_secs);
+    let k = photon_scale(share, fixed, per_unit, camera_secs);
     let mut counts = (
         round_count(s.global_photons as f64 * k),
         round_count(s.caustic_photons as f64 * k),
@@ -91,8 +112,10 @@ pub fn choose_counts(
     }
 }
 
-/// Seconds one sample per pixel over `crop` would take, from one sample
-/// at every [`PROBE_PIXELS`]-th pixel (random positions inside them).
+/// Seconds one sample per pixel over `crop` would take, from one sample at
+/// every `d`-th pixel (random positions inside them), `d` halved from
+/// [`PROBE_PIXELS`] until the probe takes [`PROBE_SECS`] or covers every
+/// pixel.
 fn camera_probe(
     scene: &Scene,
     s: &PhotonSettings,
@@ -100,9 +123,8 @@ fn camera_probe(
     crop: PixelBounds,
     seed: u64,
 ) -> f64 {
-    let (w, h) = (crop.x1 - crop.x0, crop.y1 - crop.y0);
-    let pixels = w as u64 * h as u64;
-    let n = pixels.div_ceil(PROBE_PIXELS).max(1);
+    let w = (crop.x1 - crop.x0).max(1) as u64;
+    let pixels = w * (crop.y1 - crop.y0).max(1) as u64;
     let ctx = PhotonCtx {
         scene,
         maps,
@@ -110,21 +132,26 @@ fn camera_probe(
         alpha_first: 1.0,
         pixel_spread: 1.0,
     };
-    let t = Instant::now();
-    (0..n).into_par_iter().for_each(|j| {
-        let i = j * PROBE_PIXELS % pixels.max(1);
-        let (px, py) = (
-            crop.x0 + (i % w as u64) as u32,
-            crop.y0 + (i / w as u64) as u32,
-        );
-        let mut sampler = Sampler::new(SamplerKind::Independent, seed ^ 0x9e0b);
-        sampler.start_pixel_sample(px, py, 0);
-        let p_film = Vec2::new(px as f32, py as f32) + sampler.get_2d();
-        let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
-        let mut rays = RayCounts::default();
-        std::hint::black_box(gather::li(&ctx, ray, &mut sampler, &mut rays));
-    });
-    t.elapsed().as_secs_f64() * pixels as f64 / n as f64
+    let mut d = PROBE_PIXELS;
+    loop {
+        let n = pixels.div_ceil(d);
+        let t = Instant::now();
+        (0..n).into_par_iter().for_each(|j| {
+            let i = j * d;
+            let (px, py) = (crop.x0 + (i % w) as u32, crop.y0 + (i / w) as u32);
+            let mut sampler = Sampler::new(SamplerKind::Independent, seed ^ 0x9e0b);
+            sampler.start_pixel_sample(px, py, 0);
+            let p_film = Vec2::new(px as f32, py as f32) + sampler.get_2d();
+            let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
+            let mut rays = RayCounts::default();
+            std::hint::black_box(gather::li(&ctx, ray, &mut sampler, &mut rays));
+        });
+        let secs = t.elapsed().as_secs_f64();
+        if secs >= PROBE_SECS || d == 1 {
+            return secs * pixels as f64 / n as f64;
+        }
+        d = (d / 2).max(1);
+    }
 }
 
 #[cfg(test)]
@@ -133,15 +160,18 @@ mod tests {
 
     #[test]
     fn the_scale_gives_photons_their_share_of_the_iteration() {
-        // Photons 1 s at the settings' counts, camera 3 s: for half the
-        // time, 3x the photons; for a quarter, 1x.
-        assert!((photon_scale(0.5, 1.0, 3.0) - 3.0).abs() < 1e-12);
-        assert!((photon_scale(0.25, 1.0, 3.0) - 1.0).abs() < 1e-12);
+        // Photons 1 s per unit of the settings' counts, camera 3 s: for half
+        // the time, 3x the photons; for a quarter, 1x; a fixed 1 s of it
+        // leaves 2 s for photons at half the time.
+        assert!((photon_scale(0.5, 0.0, 1.0, 3.0) - 3.0).abs() < 1e-12);
+        assert!((photon_scale(0.25, 0.0, 1.0, 3.0) - 1.0).abs() < 1e-12);
+        assert!((photon_scale(0.5, 1.0, 1.0, 3.0) - 2.0).abs() < 1e-12);
         // Clamped, and neutral when nothing is known.
-        assert_eq!(photon_scale(0.5, 1e-9, 1e3), 64.0);
-        assert_eq!(photon_scale(0.5, 1e3, 1e-9), 1.0 / 64.0);
-        assert_eq!(photon_scale(0.0, 1.0, 3.0), 1.0);
-        assert_eq!(photon_scale(0.5, 0.0, 3.0), 1.0);
+        assert_eq!(photon_scale(0.5, 0.0, 1e-9, 1e3), 64.0);
+        assert_eq!(photon_scale(0.5, 0.0, 1e3, 1e-9), 1.0 / 64.0);
+        assert_eq!(photon_scale(0.5, 5.0, 1.0, 3.0), 1.0 / 64.0);
+        assert_eq!(photon_scale(0.0, 0.0, 1.0, 3.0), 1.0);
+        assert_eq!(photon_scale(0.5, 0.0, 0.0, 3.0), 1.0);
     }
 
     #[test]

@@ -65,8 +65,9 @@ pub struct PhotonSettings {
     /// Emit caustic photons only towards perfectly specular shapes
     /// (see `aim.rs`); their fluxes then differ and q_1 uses each photon's own.
     pub aim_caustics: bool,
-    /// Render in iterations, each with fresh maps and a shrinking caustic
-    /// radius (`None`: one pair of maps for the whole render).
+    /// Render in iterations, each with fresh maps and shrinking radii (the
+    /// default; `None`: one pair of maps for the whole render, the
+    /// single-map baseline).
     pub progressive: Option<Progressive>,
 }
 
@@ -85,7 +86,7 @@ impl Default for PhotonSettings {
             kernel: Kernel::None,
             radiance_photons: true,
             aim_caustics: false,
-            progressive: None,
+            progressive: Some(Progressive::default()),
         }
     }
 }
@@ -120,7 +121,7 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("string", "kernel", "kernel", "none|cone", "caustic density-estimation kernel"),
     spec("bool", "radiancephotons", "radiance-photons", "true|false", "read the global map through precomputed radiance photons"),
     spec("bool", "aimcaustics", "aim-caustics", "true|false", "emit caustic photons only towards perfectly specular shapes"),
-    spec("bool", "progressive", "progressive", "true|false", "render in iterations, each tracing fresh photons (`photons` and `causticphotons` per iteration) with a caustic radius that shrinks from one to the next"),
+    spec("bool", "progressive", "progressive", "true|false", "render in iterations (the default), each tracing fresh photons (`photons` and `causticphotons` per iteration) with radii that shrink from one to the next; `false`: one photon map for the whole render"),
     spec("integer", "iterationspp", "iteration-spp", "S", "progressive: samples per pixel rendered with each iteration's maps"),
     spec("float", "shrink", "shrink", "A", "progressive: radius sequence r_{i+1}^2 = r_i^2 (i + A) / (i + 1), 0 < A <= 1"),
     spec("float", "initialradius", "initial-radius", "R", "progressive: caustic radius of the first iteration (0: the median k-NN radius of the first iteration's caustic photons)"),
