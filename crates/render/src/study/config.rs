@@ -1,6 +1,7 @@
 //! The study configuration (TOML) and its expansion into runs.
 
 use super::error::{bail, Context, Result};
+pub use super::setting::SettingCfg;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -34,6 +35,9 @@ pub struct Config {
     pub scenes: Vec<SceneCfg>,
     #[serde(rename = "setting")]
     pub settings: Vec<SettingCfg>,
+    /// The config file's folder (absolute): `{config_dir}` in external commands.
+    #[serde(skip)]
+    pub dir: PathBuf,
 }
 
 #[derive(Debug, Deserialize)]
@@ -50,14 +54,6 @@ pub struct SceneCfg {
     pub exposure: Option<f32>,
     /// Extra render flags for every run of this scene.
     #[serde(default)]
-    pub flags: Vec<String>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SettingCfg {
-    pub name: String,
-    /// Render flags, as on the command line (`--integrator photon --caustics mis`).
     pub flags: Vec<String>,
 }
 
@@ -138,6 +134,12 @@ impl Config {
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
         let mut c: Config = toml::from_str(&text).with_context(|| path.display().to_string())?;
         let base = path.parent().unwrap_or(Path::new("."));
+        let dir = if base.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            base
+        };
+        c.dir = std::path::absolute(dir).with_context(|| dir.display().to_string())?;
         for s in &mut c.scenes {
             s.file = base.join(&s.file);
             s.reference = base.join(&s.reference);
@@ -147,7 +149,7 @@ impl Config {
         Ok(c)
     }
 
-    fn check(&self) -> Result<()> {
+    pub(super) fn check(&self) -> Result<()> {
         if self.scenes.is_empty() || self.settings.is_empty() || self.seeds.is_empty() {
             bail!("a study needs at least one [[scene]], one [[setting]] and one seed");
         }
@@ -180,11 +182,13 @@ impl Config {
                 bail!("scene `{n}` appears twice");
             }
         }
-        for n in self.settings.iter().map(|s| &s.name) {
+        for s in &self.settings {
+            let n = &s.name;
             check_name("setting", n)?;
             if !names.insert(("setting", n)) {
                 bail!("setting `{n}` appears twice");
             }
+            super::setting::check_external(s).with_context(|| format!("setting `{n}`"))?;
         }
         const OWNED: [&str; 6] = ["--time", "--spp", "--seed", "--threads", "-o", "--output"];
         let all = self.scenes.iter().flat_map(|s| &s.flags);
@@ -194,6 +198,14 @@ impl Config {
             }
         }
         Ok(())
+    }
+
+    /// The thread count runs use: `threads`, or all cores for 0.
+    pub fn resolved_threads(&self) -> usize {
+        match self.threads {
+            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+            n => n,
+        }
     }
 
     pub fn budgets(&self) -> Vec<Budget> {

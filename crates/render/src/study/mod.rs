@@ -5,21 +5,26 @@
 //! rerun skips finished runs. Front ends (`lumis study`) load a [`Config`]
 //! and say how a run's flags become a job.
 
+pub mod calibrate;
+mod command;
 pub mod config;
 pub mod error;
+mod external;
+pub mod fit;
 mod plot;
 mod report;
+mod runs;
+mod scene_copy;
+mod setting;
 pub mod store;
+mod summary;
 
 pub use config::Config;
 pub use error::{Result, StudyError};
 
 use crate::image_io::{read_image, write_image, RgbImage};
-use crate::integrator::RenderHooks;
-use crate::load::options::crop_bounds;
-use crate::metrics::heatmap::write_heatmap;
-use crate::metrics::{compare, PixelError};
-use crate::session::{RenderJob, Session};
+use crate::metrics::compare;
+use crate::session::RenderJob;
 use error::Context;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -150,6 +155,7 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
         refs.push(r);
     }
     let ctx_start = (loadavg(), utc_now());
+    let mut ext = external::Externals::new(c, &out, a.log, a.cancel);
     let runs = c.runs();
     let mut results: Vec<RunResult> = Vec::new();
     let mut planned: Vec<(String, bool)> = runs.iter().map(|r| (r.id(c), false)).collect();
@@ -157,8 +163,23 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
     let mut interrupted = false;
     for (k, run) in runs.iter().enumerate() {
         let id = run.id(c);
-        let args = c.render_args(run);
+        if ext.is_skipped(run.setting) {
+            continue;
+        }
         let tag = format!("[{}/{}] {id}", k + 1, runs.len());
+        let plan = match &c.settings[run.setting].external {
+            None => None,
+            Some(_) => match ext.plan(run, &id).with_context(|| format!("run {id}"))? {
+                Some(p) => Some(p),
+                None => {
+                    interrupted = true;
+                    break;
+                }
+            },
+        };
+        let args = plan
+            .as_ref()
+            .map_or_else(|| c.render_args(run), |p| p.args.clone());
         if let Some(r) = store.finished(&id, &args) {
             (a.log)(&format!("{tag}: finished before, skipped"));
             results.push(r);
@@ -170,8 +191,13 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
             break;
         }
         let t0 = Instant::now();
-        let r = render_run(c, a, run, &id, &args, &refs[run.scene], &infos[run.scene])
-            .with_context(|| format!("run {id} (lumis render {})", args.join(" ")))?;
+        let (sref, sinfo) = (&refs[run.scene], &infos[run.scene]);
+        let r = match &plan {
+            None => runs::lumis_run(c, a, run, &id, &args, sref, sinfo)
+                .with_context(|| format!("run {id} (lumis render {})", args.join(" ")))?,
+            Some(p) => runs::external_run(c, a, &ext, (run, &id), p, sref, sinfo)
+                .with_context(|| format!("run {id} ({})", command::show(&args)))?,
+        };
         let Some(r) = r else {
             interrupted = true;
             break;
@@ -193,7 +219,12 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
         results.push(r);
     }
     store.write_manifest(&c.title, &planned)?;
-    store.write_tables(&results)?;
+    let summary = store::Summary {
+        slopes: fit::slopes(c, &results),
+        calibrations: ext.calibrations(),
+        skipped: ext.skipped(),
+    };
+    store.write_tables(&results, &summary)?;
     let ctx = report::Context {
         machine: machine(),
         load_before: ctx_start.0,
@@ -202,6 +233,7 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
         finished: utc_now(),
         command: a.command.clone(),
         planned: runs.len(),
+        summary,
     };
     let page = report::html(c, &results, &infos, &ctx);
     // The files the page shows (for copying a report without every run's images).
@@ -223,80 +255,6 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
         interrupted,
         report: out.join("index.html"),
     })
-}
-
-/// Renders one run and writes its EXR, PNG and heatmap; None if interrupted
-/// (nothing of the run is kept then).
-fn render_run(
-    c: &Config,
-    a: &StudyRun,
-    run: &config::Run,
-    id: &str,
-    args: &[String],
-    reference: &RgbImage,
-    info: &report::SceneInfo,
-) -> Result<Option<RunResult>> {
-    let out = a.out.as_path();
-    let scene = &c.scenes[run.scene];
-    let dir: PathBuf = out.join(&scene.name);
-    let (exr, png, heat) = (
-        dir.join(format!("{id}.exr")),
-        dir.join(format!("{id}.png")),
-        dir.join(format!("{id}.err.png")),
-    );
-    std::fs::create_dir_all(&dir)?;
-    // The run as a job: its flags, its scene, its image.
-    let mut job = (a.job_for)(args)?;
-    job.scene = Some(std::path::absolute(&scene.file)?);
-    job.outputs = vec![exr.clone()];
-    let session = Session::new(job)?;
-    if run.seed == c.seeds[0] && run.budget == c.budgets()[0] {
-        for w in &session.loaded.warnings {
-            (a.log)(&w.to_string());
-        }
-    }
-    let o = session.render(RenderHooks {
-        progress: &|_| {},
-        cancel: a.cancel,
-        after_pass: None,
-        resume: None,
-    });
-    if o.interrupted {
-        return Ok(None);
-    }
-    let mut img = session.image(&o, None);
-    img.metadata.push((
-        "lumis:study-run".into(),
-        format!("{id}: {}", args.join(" ")),
-    ));
-    let region = scene.mask.map(|m| crop_bounds((img.width, img.height), m));
-    let m = compare(&img, reference, region).with_context(|| "against the reference".into())?;
-    session.write(&img)?;
-    write_image(&png, &img, info.exposure)?;
-    let kind = PixelError::from_name(&c.heatmap).expect("checked");
-    let range = (c.heatmap_range[0], c.heatmap_range[1]);
-    write_heatmap(&heat, &img, reference, kind, Some(range))?;
-    Ok(Some(RunResult {
-        id: id.to_string(),
-        scene: scene.name.clone(),
-        setting: c.settings[run.setting].name.clone(),
-        budget: run.budget.label(),
-        seed: run.seed,
-        args: args.to_vec(),
-        spp: o.spp,
-        seconds: o.elapsed.as_secs_f64(),
-        photon_seconds: o
-            .photon_stats
-            .map(|p| (p.trace_time + p.build_time + p.radiance_time).as_secs_f64()),
-        mse: m.mse,
-        rmse: m.rmse,
-        relmse: m.rel_mse,
-        mae: m.mae,
-        ratio: m.ratio(),
-        exr: rel(out, &exr),
-        png: rel(out, &png),
-        heatmap: rel(out, &heat),
-    }))
 }
 
 #[cfg(test)]

@@ -1,12 +1,33 @@
 //! Log-log error-versus-time plots as hand-written SVG: per setting, every
 //! run as a point, the min-max spread across seeds at each budget as a bar,
-//! and a line through the geometric means.
+//! a line through the geometric means, and the least-squares power law
+//! (dashed, its slope in the legend).
+
+use super::fit::Line;
 
 /// One setting's runs, grouped by budget: (seconds, error) per seed.
 pub struct Series {
     pub name: String,
     pub colour: &'static str,
     pub groups: Vec<Vec<(f64, f64)>>,
+    /// ln error = intercept + slope * ln seconds, drawn over the runs' seconds.
+    pub fit: Option<Line>,
+}
+
+impl Series {
+    /// The fitted line's two ends, at the series' shortest and longest run.
+    fn fit_ends(&self) -> Option<[(f64, f64); 2]> {
+        let l = self.fit?;
+        let xs = self
+            .groups
+            .iter()
+            .flatten()
+            .map(|p| p.0)
+            .filter(|x| *x > 0.0);
+        let (lo, hi) = xs.fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+        let at = |x: f64| (x, l.at(x.ln()).exp());
+        (hi > 0.0).then(|| [at(lo), at(hi)])
+    }
 }
 
 /// Colour-blind-friendly categorical colours (Okabe-Ito).
@@ -76,9 +97,19 @@ fn esc(s: &str) -> String {
 
 /// The SVG text of a log-log plot of `series` (x: seconds, y: `y_label`).
 pub fn svg(title: &str, y_label: &str, series: &[Series]) -> String {
-    let (w, h) = (460.0, 300.0);
-    let (ml, mr, mt, mb) = (62.0, 130.0, 26.0, 42.0);
-    let pts = || series.iter().flat_map(|s| s.groups.iter().flatten());
+    let (w, h) = (490.0, 300.0);
+    let (ml, mr, mt, mb) = (62.0, 160.0, 26.0, 42.0);
+    let ends: Vec<(f64, f64)> = series
+        .iter()
+        .filter_map(|s| s.fit_ends())
+        .flatten()
+        .collect();
+    let pts = || {
+        series
+            .iter()
+            .flat_map(|s| s.groups.iter().flatten())
+            .chain(&ends)
+    };
     let mut o = format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="11">"#
     );
@@ -161,6 +192,19 @@ pub fn svg(title: &str, y_label: &str, series: &[Series]) -> String {
             r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="1.5"/>"#,
             line.join(" ")
         );
+        if let Some([a, b]) = s.fit_ends() {
+            o += &format!(
+                r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="1" stroke-dasharray="5 3"/>"#,
+                px(a.0),
+                py(a.1),
+                px(b.0),
+                py(b.1)
+            );
+        }
+        let label = match s.fit {
+            Some(l) => format!("{} ({:.2})", s.name, l.slope),
+            None => s.name.clone(),
+        };
         let ly = mt + 10.0 + i as f64 * 16.0;
         o += &format!(
             r#"<line x1="{0}" y1="{ly}" x2="{1}" y2="{ly}" stroke="{c}" stroke-width="2"/><circle cx="{2}" cy="{ly}" r="2.5" fill="{c}"/><text x="{3}" y="{4}">{5}</text>"#,
@@ -169,7 +213,7 @@ pub fn svg(title: &str, y_label: &str, series: &[Series]) -> String {
             w - mr + 18.0,
             w - mr + 32.0,
             ly + 4.0,
-            esc(&s.name)
+            esc(&label)
         );
     }
     o + "</svg>"
@@ -195,11 +239,33 @@ mod tests {
             name: "mis".into(),
             colour: COLOURS[0],
             groups: vec![vec![(1.0, 0.1), (1.1, 0.2)], vec![(2.0, 0.05), (2.1, 0.06)]],
+            fit: None,
         };
         let t = svg("scene", "relMSE", &[s]);
         assert!(t.starts_with("<svg") && t.ends_with("</svg>"));
         assert_eq!(t.matches("<circle").count(), 4 + 1);
         assert!(t.contains(">mis</text>"));
+        assert!(!t.contains("stroke-dasharray"));
         assert!(svg("empty", "x", &[]).contains("no finished runs"));
+    }
+
+    #[test]
+    fn the_fit_is_dashed_and_its_slope_in_the_legend() {
+        let fit = Line {
+            intercept: 0.0,
+            slope: -1.0,
+        };
+        let s = Series {
+            name: "pbrt".into(),
+            colour: COLOURS[1],
+            groups: vec![vec![(2.0, 0.5)], vec![(8.0, 0.125)]],
+            fit: Some(fit),
+        };
+        let [a, b] = s.fit_ends().unwrap();
+        assert!(a.0 == 2.0 && (a.1 - 0.5).abs() < 1e-12, "{a:?}");
+        assert!(b.0 == 8.0 && (b.1 - 0.125).abs() < 1e-12, "{b:?}");
+        let t = svg("scene", "MSE", &[s]);
+        assert_eq!(t.matches("stroke-dasharray").count(), 1);
+        assert!(t.contains(">pbrt (-1.00)</text>"), "{t}");
     }
 }

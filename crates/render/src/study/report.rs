@@ -2,8 +2,9 @@
 //! relative path, no scripts.
 
 use super::config::{Budget, Config};
+use super::fit;
 use super::plot::{self, Series};
-use super::store::RunResult;
+use super::store::{RunResult, Summary};
 
 /// Per-scene facts for the report.
 pub struct SceneInfo {
@@ -23,6 +24,7 @@ pub struct Context {
     pub finished: String,
     pub command: String,
     pub planned: usize,
+    pub summary: Summary,
 }
 
 pub fn esc(s: &str) -> String {
@@ -56,7 +58,8 @@ fn metric_table(c: &Config, rs: &[RunResult], scene: &str, metric: &str, label: 
     o += "</tr>";
     for b in c.budgets() {
         let bl = b.label();
-        let cells: Vec<Option<(f64, f64, f64, f64)>> = c
+        // Per setting: mean, min, max, mean spp, mean seconds.
+        let cells: Vec<Option<[f64; 5]>> = c
             .settings
             .iter()
             .map(|s| {
@@ -67,16 +70,17 @@ fn metric_table(c: &Config, rs: &[RunResult], scene: &str, metric: &str, label: 
                 let m: Vec<f64> = v.iter().map(|r| r.metric(metric)).collect();
                 let mean = m.iter().sum::<f64>() / m.len() as f64;
                 let spp = v.iter().map(|r| r.spp as f64).sum::<f64>() / v.len() as f64;
+                let secs = v.iter().map(|r| r.seconds).sum::<f64>() / v.len() as f64;
                 let (lo, hi) = m
                     .iter()
                     .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
-                Some((mean, lo, hi, spp))
+                Some([mean, lo, hi, spp, secs])
             })
             .collect();
         let best = cells
             .iter()
             .flatten()
-            .map(|c| c.0)
+            .map(|c| c[0])
             .fold(f64::INFINITY, f64::min);
         let name = match b {
             Budget::Time(t) => format!("{t} s"),
@@ -86,8 +90,8 @@ fn metric_table(c: &Config, rs: &[RunResult], scene: &str, metric: &str, label: 
         for cell in cells {
             o += &match cell {
                 None => "<td>–</td>".to_string(),
-                Some((m, lo, hi, spp)) => format!(
-                    "<td{}>{m:.3e}<br><span class=small>{lo:.2e}–{hi:.2e}, {spp:.0} spp</span></td>",
+                Some([m, lo, hi, spp, secs]) => format!(
+                    "<td{}>{m:.3e}<br><span class=small>{lo:.2e}–{hi:.2e}, {spp:.0} spp, {secs:.2} s</span></td>",
                     if m == best { " class=best" } else { "" }
                 ),
             };
@@ -162,6 +166,11 @@ fn plot_for(c: &Config, rs: &[RunResult], scene: &str, metric: &str, label: &str
                         .collect()
                 })
                 .collect(),
+            fit: fit::metric_fit(
+                rs.iter()
+                    .filter(|r| r.scene == scene && r.setting == s.name),
+                metric,
+            ),
         })
         .collect();
     plot::svg(&format!("{scene}: {label} vs time"), label, &series)
@@ -188,9 +197,10 @@ pub fn html(c: &Config, rs: &[RunResult], info: &[SceneInfo], ctx: &Context) -> 
         esc(&ctx.command)
     );
     o += &format!(
-        "<p class=small>Budgets are wall-clock seconds including photon tracing and map building (scene loading excluded); a render stops after the last whole 1-spp pass that fits and always does at least one pass, so the measured time (plot x axis) can exceed the budget. Timings are noisy when the machine is shared. Metrics: mean over seeds in each cell, min–max and mean spp under it; the lowest mean of each row is highlighted. Heatmaps: {heat}, log scale {:.0e} … {:.0e} (viridis), the same for every run. Images: tone-mapped PNG, the same exposure across a scene; full runs in <a href=\"metrics.csv\">metrics.csv</a> and <a href=\"metrics.json\">metrics.json</a>.</p>",
+        "<p class=small>Budgets are wall-clock seconds including photon tracing and map building (scene loading excluded); a render stops after the last whole 1-spp pass that fits and always does at least one pass, so the measured time (plot x axis) can exceed the budget. Timings are noisy when the machine is shared. Metrics: mean over seeds in each cell, min–max and mean spp and seconds under it; the lowest mean of each row is highlighted. Heatmaps: {heat}, log scale {:.0e} … {:.0e} (viridis), the same for every run. Images: tone-mapped PNG, the same exposure across a scene; full runs in <a href=\"metrics.csv\">metrics.csv</a> and <a href=\"metrics.json\">metrics.json</a>.</p>",
         c.heatmap_range[0], c.heatmap_range[1]
     );
+    o += &super::summary::html(c, &ctx.summary);
     for (sc, inf) in c.scenes.iter().zip(info) {
         o += &format!("<h2>{}</h2>", esc(&sc.name));
         o += &format!(

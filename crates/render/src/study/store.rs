@@ -2,7 +2,9 @@
 //! after its images), and a manifest of the study; a rerun skips every run
 //! whose record exists with the same render arguments.
 
+use super::calibrate::Calibration;
 use super::error::{Context, Result};
+use super::fit::Slope;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -49,6 +51,17 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let tmp = path.with_file_name(format!(".{}.tmp", name.unwrap_or_default()));
     std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
     std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
+}
+
+/// What a study found beyond its runs.
+#[derive(Debug, Default, Serialize)]
+pub struct Summary {
+    /// Log-log slopes of error against seconds, per scene and setting.
+    pub slopes: Vec<Slope>,
+    /// The calibrations of external settings' time budgets.
+    pub calibrations: Vec<Calibration>,
+    /// Settings whose program is missing, a sentence each.
+    pub skipped: Vec<String>,
 }
 
 pub struct Store {
@@ -115,8 +128,9 @@ impl Store {
         )
     }
 
-    /// `metrics.csv` and `metrics.json` over the finished runs.
-    pub fn write_tables(&self, results: &[RunResult]) -> Result<()> {
+    /// `metrics.csv` over the finished runs, and `metrics.json`: the runs
+    /// with the slopes, calibrations and skipped settings.
+    pub fn write_tables(&self, results: &[RunResult], summary: &Summary) -> Result<()> {
         let mut csv = String::from(
             "scene,setting,budget,seed,spp,seconds,photon_seconds,mse,rmse,relmse,mae,ratio_r,ratio_g,ratio_b\n",
         );
@@ -142,9 +156,19 @@ impl Store {
             );
         }
         write_atomic(&self.dir.join("metrics.csv"), csv.as_bytes())?;
+        #[derive(Serialize)]
+        struct Json<'a> {
+            runs: &'a [RunResult],
+            #[serde(flatten)]
+            summary: &'a Summary,
+        }
+        let json = Json {
+            runs: results,
+            summary,
+        };
         write_atomic(
             &self.dir.join("metrics.json"),
-            serde_json::to_string_pretty(results)?.as_bytes(),
+            serde_json::to_string_pretty(&json)?.as_bytes(),
         )
     }
 }
@@ -185,9 +209,14 @@ mod tests {
         assert_eq!(s.finished(&r.id, &r.args), Some(r.clone()));
         // Other arguments: stale.
         assert!(s.finished(&r.id, &["y.pbrt".to_string()]).is_none());
-        s.write_tables(&[r]).unwrap();
+        s.write_tables(std::slice::from_ref(&r), &Summary::default())
+            .unwrap();
         let csv = std::fs::read_to_string(dir.join("metrics.csv")).unwrap();
         assert_eq!(csv.lines().count(), 2);
+        let json = std::fs::read_to_string(dir.join("metrics.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        assert_eq!(v["runs"][0]["id"], r.id.as_str());
+        assert!(v["slopes"].as_array().unwrap().is_empty());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
