@@ -53,6 +53,11 @@ def _value(tok):
         return None
 
 
+def _is_word(tok):
+    """A bare word: a directive (the parameters are quoted strings or numbers)."""
+    return tok[0].isalpha() and tok not in ("true", "false")
+
+
 def _tokens(text, path):
     line = 1
     pos = 0
@@ -73,7 +78,7 @@ def parse(path):
             raise PbrtError(f"{loc}: `{name}` is not in the subset the benchmark converts")
         i += 1
         args, params = [], {}
-        while i < len(toks) and toks[i][0] not in DIRECTIVES:
+        while i < len(toks) and not _is_word(toks[i][0]):
             tok, tloc = toks[i]
             m = PARAM.match(tok[1:-1]) if tok.startswith('"') else None
             if m is None:
