@@ -232,6 +232,12 @@ fn print_summary(session: &Session, out: &RenderOutcome, img: &RgbImage, files: 
                 "lumis: progressive: {} iterations of {g} global and {c} caustic photons, last caustic radius {:.3e}",
                 ps.render_iterations, ps.caustic_radius
             );
+            if ps.counts_chosen {
+                eprintln!(
+                    "lumis: photon counts chosen for the time budget; the same image without it: --iterations {} --photons {g} --caustic-photons {c}",
+                    ps.render_iterations
+                );
+            }
         }
     }
 }

@@ -127,10 +127,8 @@ fn white_coated_diffuse_sphere_in_white_furnace() {
 /// furnace tests in `photon_progressive.rs`.)
 #[test]
 fn photon_converges_to_le_over_one_minus_albedo() {
-    let text = sphere_scene(0.5, 0.5, "photon", 100).replace(
-        "[ 100 ]",
-        "[ 100 ] \"bool progressive\" false",
-    );
+    let text = sphere_scene(0.5, 0.5, "photon", 100)
+        .replace("[ 100 ]", "[ 100 ] \"bool progressive\" false");
     let l = load(&text, &Default::default());
     let out = render_loaded(&l, 16, 7, 0);
     let (mean, se) = mean_and_se(&out.film, None);

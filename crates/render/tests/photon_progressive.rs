@@ -169,8 +169,8 @@ fn photon_only_error_keeps_falling_with_iterations() {
 /// The seed's weights per iteration: the caustic region's mean converges to
 /// the `path` reference. Its bias (mean over 4 seeds) falls from 4
 /// iterations to 4x and 16x as many, and the pixel error with it. Measured
-/// (2026-12-02): +2.7%, +1.5%, +0.9%; the radius falls as i^(-1/3), so the
-/// bias should fall by 0.63 per 4x.
+/// (2026-12-02, the default a = 1/2): +2.4%, +1.1%, +0.4%; the squared
+/// radius falls as i^(a - 1), so the bias should fall by 0.5 per 4x.
 #[test]
 fn mis_caustic_bias_falls_with_iterations() {
     let seeds = [1, 2, 3, 4];

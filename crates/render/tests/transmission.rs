@@ -308,8 +308,10 @@ Material "diffuse" "rgb reflectance" [ 0.5 0.5 0.5 ]
     let render = |integrator: &str, caustics: &str, spp: u32| {
         let text = scene(integrator, caustics);
         let text = if integrator == "path" {
-            text.replace(r#""string caustics" "mis""#, "")
-                .replace(r#""integer causticphotons" [ 400000 ] "bool progressive" false"#, "")
+            text.replace(r#""string caustics" "mis""#, "").replace(
+                r#""integer causticphotons" [ 400000 ] "bool progressive" false"#,
+                "",
+            )
         } else {
             text
         };

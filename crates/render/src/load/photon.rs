@@ -39,11 +39,15 @@ fn kernel(s: &str) -> Option<Kernel> {
 
 /// The settings `e` asks for (its parameters over the defaults).
 pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Diagnostic> {
+    let p = &e.params;
+    let defaults = match p.get_bool("progressive", true)? {
+        true => PhotonSettings::default(),
+        false => PhotonSettings::single_map(),
+    };
     let mut s = PhotonSettings {
         max_depth,
-        ..PhotonSettings::default()
+        ..defaults
     };
-    let p = &e.params;
     let count = |name: &str, d: u64| -> Result<u64, Diagnostic> {
         let v = p.get_int(name, d.min(i32::MAX as u64) as i32)?;
         if v < 0 {
@@ -77,10 +81,9 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.kernel = choice(e, "kernel", "none", "kernel", kernel)?;
     s.radiance_photons = p.get_bool("radiancephotons", s.radiance_photons)?;
     s.aim_caustics = p.get_bool("aimcaustics", s.aim_caustics)?;
-    s.progressive = match p.get_bool("progressive", true)? {
-        true => Some(progressive(e)?),
-        false => None,
-    };
+    if s.progressive.is_some() {
+        s.progressive = Some(progressive(e)?);
+    }
     if !(s.max_radius >= 0.0) {
         return Err(Diagnostic::error(
             &p.loc_of("maxradius").unwrap_or(e.loc.clone()),

@@ -32,12 +32,12 @@ const PROBE_PIXELS: u64 = 32;
 /// costs and timer noise do not dominate them.
 const PROBE_SECS: f64 = 0.04;
 /// The counts stay within this factor of the settings'.
-const MAX_SCALE: f64 = 64.0;
+const MAX_SCALE: f64 = 1024.0;
 
 /// The factor by which to scale the photon counts so that photon tracing,
 /// `fixed + per_unit * k` seconds at `k` times the settings' counts, takes
 /// `share` of an iteration whose camera samples take `camera_secs`; within
-/// [1/64, 64].
+/// [1/1024, 1024].
 pub fn photon_scale(share: f64, fixed: f64, per_unit: f64, camera_secs: f64) -> f64 {
     let known = per_unit > 0.0 && camera_secs > 0.0 && fixed >= 0.0;
     if !(share > 0.0 && share < 1.0 && known) {
@@ -167,9 +167,9 @@ mod tests {
         assert!((photon_scale(0.25, 0.0, 1.0, 3.0) - 1.0).abs() < 1e-12);
         assert!((photon_scale(0.5, 1.0, 1.0, 3.0) - 2.0).abs() < 1e-12);
         // Clamped, and neutral when nothing is known.
-        assert_eq!(photon_scale(0.5, 0.0, 1e-9, 1e3), 64.0);
-        assert_eq!(photon_scale(0.5, 0.0, 1e3, 1e-9), 1.0 / 64.0);
-        assert_eq!(photon_scale(0.5, 5.0, 1.0, 3.0), 1.0 / 64.0);
+        assert_eq!(photon_scale(0.5, 0.0, 1e-9, 1e3), 1024.0);
+        assert_eq!(photon_scale(0.5, 0.0, 1e3, 1e-9), 1.0 / 1024.0);
+        assert_eq!(photon_scale(0.5, 5.0, 1.0, 3.0), 1.0 / 1024.0);
         assert_eq!(photon_scale(0.0, 0.0, 1.0, 3.0), 1.0);
         assert_eq!(photon_scale(0.5, 0.0, 0.0, 3.0), 1.0);
     }

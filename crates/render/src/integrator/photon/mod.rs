@@ -2,8 +2,8 @@
 //! caustic part is estimated twice (caustic photon map and final-gather rays)
 //! and combined per sample with the seed's weights (`../shared/METHOD.md`).
 //!
-//! Orchestration is in `run.rs` (the photon pass before the camera passes,
-//! `alpha` between them) and [`PhotonMaps::build`]; per-path tracing in
+//! Orchestration is in `run.rs` (the photon passes between the camera
+//! passes, `alpha`) and `pass.rs` (a photon pass's maps); per-path tracing in
 //! `trace.rs` (photons) and `gather.rs` (camera paths); settings here;
 //! weights in `weights.rs`; the progressive mode's iteration schedule and
 //! shrinking radius in `progressive.rs`.
@@ -12,6 +12,7 @@ pub mod aim;
 pub mod budget;
 pub mod gather;
 pub mod map;
+pub mod pass;
 pub mod photon;
 pub mod progressive;
 pub mod radiance;
@@ -20,16 +21,9 @@ pub mod run;
 pub mod trace;
 pub mod weights;
 
-use crate::scene::Scene;
-use lumis_math::Vec3;
 use lumis_scene::ParamSpec;
-use map::PhotonMap;
+pub use pass::{PhotonMaps, PhotonStats, Radii, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
 pub use progressive::Progressive;
-use radiance::RadiancePhotons;
-use radius_field::RadiusField;
-use std::sync::atomic::AtomicBool;
-use std::sync::Arc;
-use std::time::{Duration, Instant};
 pub use weights::{AlphaMode, CausticMode, Heuristic};
 
 /// Density-estimation filter for the caustic photons.
@@ -71,8 +65,31 @@ pub struct PhotonSettings {
     pub progressive: Option<Progressive>,
 }
 
+/// The progressive mode's defaults (docs/integrators.md, "Choosing the
+/// defaults", says how they were measured): per iteration, photons for the
+/// global and the caustic map, and gather rays per camera sample.
+pub const PROGRESSIVE_PHOTONS: (u64, u64) = (PROG_GLOBAL, PROG_CAUSTIC);
+const PROG_GLOBAL: u64 = 40_000;
+const PROG_CAUSTIC: u64 = 200_000;
+const PROG_GATHER_RAYS: u32 = 4;
+
 impl Default for PhotonSettings {
+    /// The progressive mode's defaults.
     fn default() -> Self {
+        PhotonSettings {
+            global_photons: PROG_GLOBAL,
+            caustic_photons: PROG_CAUSTIC,
+            gather_rays: PROG_GATHER_RAYS,
+            progressive: Some(Progressive::default()),
+            ..PhotonSettings::single_map()
+        }
+    }
+}
+
+impl PhotonSettings {
+    /// The single map's defaults (`progressive false`, the baseline; the
+    /// defaults of every render before the progressive mode).
+    pub fn single_map() -> PhotonSettings {
         PhotonSettings {
             global_photons: 200_000,
             caustic_photons: 1_000_000,
@@ -86,7 +103,7 @@ impl Default for PhotonSettings {
             kernel: Kernel::None,
             radiance_photons: true,
             aim_caustics: false,
-            progressive: Some(Progressive::default()),
+            progressive: None,
         }
     }
 }
@@ -168,203 +185,4 @@ pub fn check_memory(s: &PhotonSettings) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// Timing and counts of the photon passes, for the summary and benchmarks.
-#[derive(Clone, Debug, Default)]
-pub struct PhotonStats {
-    pub global_stored: usize,
-    pub caustic_stored: usize,
-    pub trace_time: Duration,
-    pub build_time: Duration,
-    pub radiance_time: Duration,
-    pub memory_bytes: usize,
-    /// Progressive iterations begun (0 without the progressive mode); the
-    /// counts and times are then sums over them and the memory their peak.
-    pub iterations: u32,
-    /// Progressive: the caustic radius of the latest iteration.
-    pub caustic_radius: f32,
-    /// Progressive: photons emitted per iteration (global, caustic).
-    pub iteration_photons: (u64, u64),
-    /// Progressive: iterations of the whole render (over all runs of a
-    /// resumed one) begun so far; `iterations` counts this run's photon
-    /// passes.
-    pub render_iterations: u64,
-}
-
-impl PhotonStats {
-    /// Adds one progressive iteration's photon pass: counts and times
-    /// summed, memory the peak, the radius the latest.
-    pub fn add_iteration(&mut self, st: &PhotonStats) {
-        self.global_stored += st.global_stored;
-        self.caustic_stored += st.caustic_stored;
-        self.trace_time += st.trace_time;
-        self.build_time += st.build_time;
-        self.radiance_time += st.radiance_time;
-        self.memory_bytes = self.memory_bytes.max(st.memory_bytes);
-        self.iterations += 1;
-        self.caustic_radius = st.caustic_radius;
-    }
-}
-
-/// Everything the camera pass needs from the photon pass.
-pub struct PhotonMaps {
-    pub global: PhotonMap,
-    pub caustic: PhotonMap,
-    pub radiance: Option<RadiancePhotons>,
-    /// Total emitted power `Phi` (luminance) of all lights.
-    pub phi: f32,
-    pub max_radius: f32,
-    /// Set when caustic photons were aimed: q_1 then uses per-photon fluxes.
-    pub targets: Option<aim::Targets>,
-    /// The fixed radii of the caustic and global estimates (progressive
-    /// iterations); `None`: the `nearest` photons within a largest radius.
-    pub radii: Option<Radii>,
-    pub stats: PhotonStats,
-}
-
-/// The query radii of one progressive iteration: each point's `r_0`
-/// scaled by the iteration's `scale2` (fixed before the iteration).
-#[derive(Clone, Debug)]
-pub struct Radii {
-    pub caustic: Arc<RadiusField>,
-    pub global: Arc<RadiusField>,
-    pub scale2: f32,
-    /// Where the global estimate is precomputed (radiance photons).
-    pub global_points: Arc<radiance::Points>,
-}
-
-impl Radii {
-    /// Squared radius of the caustic estimate at `p`.
-    #[inline]
-    pub fn caustic_r2(&self, p: Vec3) -> f32 {
-        self.caustic.r2_at(p) * self.scale2
-    }
-
-    /// Squared radius of the global estimate at `p`.
-    #[inline]
-    pub fn global_r2(&self, p: Vec3) -> f32 {
-        self.global.r2_at(p) * self.scale2
-    }
-
-    /// The largest global radius of this iteration.
-    pub fn global_max(&self) -> f32 {
-        self.global.max_radius() * self.scale2.sqrt()
-    }
-}
-
-/// One global photon in this many becomes a radiance photon.
-pub const RADIANCE_STRIDE: usize = 4;
-
-/// The global map's largest radius relative to the caustic map's.
-pub const GLOBAL_RADIUS_SCALE: f32 = 5.0;
-
-impl PhotonMaps {
-    /// Traces and builds the maps, radiance photons from the `nearest`
-    /// photons; gives up (`None`) soon after `cancel` is set, so an
-    /// interrupt during a long photon pass ends the render at once.
-    pub fn build(
-        scene: &Scene,
-        s: &PhotonSettings,
-        seed: u64,
-        cancel: &AtomicBool,
-    ) -> Option<PhotonMaps> {
-        let (mut maps, normals) = Self::trace(scene, s, seed, cancel)?;
-        maps.finish(s, &normals, None);
-        Some(maps)
-    }
-
-    /// Traces the photons and builds the maps' trees; [`PhotonMaps::finish`]
-    /// then builds the radiance photons (`normals`: the global photons'
-    /// surface normals).
-    pub fn trace(
-        scene: &Scene,
-        s: &PhotonSettings,
-        seed: u64,
-        cancel: &AtomicBool,
-    ) -> Option<(PhotonMaps, Vec<Vec3>)> {
-        let phi: f32 = scene
-            .lights
-            .iter()
-            .map(|l| l.power(&scene.shapes).luminance())
-            .sum();
-        let max_radius = if s.max_radius > 0.0 {
-            s.max_radius
-        } else {
-            0.02 * scene.bounds.bounding_sphere().1.max(1e-6)
-        };
-        let t0 = Instant::now();
-        let g = trace::trace_photons(
-            scene,
-            s.global_photons,
-            trace::MapKind::Global,
-            seed,
-            s.max_depth,
-            None,
-            cancel,
-        )?;
-        let targets =
-            Some(aim::Targets::from_scene(scene)).filter(|t| s.aim_caustics && !t.is_empty());
-        let c = trace::trace_photons(
-            scene,
-            s.caustic_photons,
-            trace::MapKind::Caustic,
-            seed ^ 0x5eed,
-            s.max_depth,
-            targets.as_ref(),
-            cancel,
-        )?;
-        let trace_time = t0.elapsed();
-        let t1 = Instant::now();
-        let global = PhotonMap::build(g.photons, s.global_photons);
-        let caustic = PhotonMap::build(c.photons, s.caustic_photons);
-        let stats = PhotonStats {
-            global_stored: global.len(),
-            caustic_stored: caustic.len(),
-            trace_time,
-            build_time: t1.elapsed(),
-            ..PhotonStats::default()
-        };
-        let maps = PhotonMaps {
-            global,
-            caustic,
-            radiance: None,
-            phi,
-            max_radius,
-            targets,
-            radii: None,
-            stats,
-        };
-        Some((maps, g.normals))
-    }
-
-    /// Sets the query radii (`None`: nearest photons) and builds the
-    /// radiance photons accordingly, if the settings ask for them.
-    pub fn finish(&mut self, s: &PhotonSettings, normals: &[Vec3], radii: Option<Radii>) {
-        let t2 = Instant::now();
-        self.radiance = match &radii {
-            _ if !s.radiance_photons || self.global.is_empty() => None,
-            Some(r) => Some(RadiancePhotons::fixed(
-                &self.global,
-                r.global_points.clone(),
-                r,
-            )),
-            None => Some(RadiancePhotons::build(
-                &self.global,
-                normals,
-                RADIANCE_STRIDE,
-                s.nearest,
-                self.max_radius * 2.0,
-            )),
-        };
-        let st = &mut self.stats;
-        st.radiance_time = t2.elapsed();
-        st.memory_bytes = self.global.memory_bytes()
-            + self.caustic.memory_bytes()
-            + self.radiance.as_ref().map_or(0, |r| r.memory_bytes());
-        st.caustic_radius = radii
-            .as_ref()
-            .map_or(0.0, |r| (r.caustic.median_r2() * r.scale2).sqrt());
-        self.radii = radii;
-    }
 }

@@ -31,10 +31,10 @@ impl Default for Progressive {
     fn default() -> Self {
         Progressive {
             iteration_spp: 1,
-            shrink: 2.0 / 3.0,
+            shrink: 0.5,
             initial_radius: 0.0,
             iterations: 0,
-            photon_share: 0.5,
+            photon_share: 0.25,
         }
     }
 }

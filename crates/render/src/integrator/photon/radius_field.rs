@@ -23,8 +23,12 @@
 //! estimate does), which affects one iteration out of many.
 
 use super::map::{dist2, inclusive, KdTree, PhotonMap};
+use super::progressive::Progressive;
+use super::radiance::Points;
+use super::{PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
 use lumis_math::Vec3;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Photons sampled for the field at most (evenly strided).
 const SAMPLES: usize = 32_768;
@@ -114,6 +118,37 @@ impl RadiusField {
 
     pub fn memory_bytes(&self) -> usize {
         self.tree.memory_bytes() + self.r2.capacity() * 4
+    }
+}
+
+/// The initial radii of the caustic and global estimates, point by point.
+pub struct RadiusFields {
+    pub caustic: Arc<RadiusField>,
+    pub global: Arc<RadiusField>,
+    /// Where the global estimate is precomputed in every iteration.
+    pub global_points: Arc<Points>,
+}
+
+impl RadiusFields {
+    /// From iteration 0's maps: the `nearest`-th photon's distance, up to
+    /// the single map's largest radii (the caustic estimate's, and the
+    /// global lookup's); a given `initialradius` sets the caustic one.
+    pub fn new(
+        maps: &PhotonMaps,
+        normals: &[Vec3],
+        s: &PhotonSettings,
+        p: &Progressive,
+    ) -> RadiusFields {
+        let caustic = match p.initial_radius > 0.0 {
+            true => RadiusField::constant(p.initial_radius),
+            false => RadiusField::from_map(&maps.caustic, s.nearest, maps.max_radius),
+        };
+        let global_max = maps.max_radius * GLOBAL_RADIUS_SCALE;
+        RadiusFields {
+            caustic: Arc::new(caustic),
+            global: Arc::new(RadiusField::from_map(&maps.global, s.nearest, global_max)),
+            global_points: Arc::new(Points::from_map(&maps.global, normals, RADIANCE_STRIDE)),
+        }
     }
 }
 

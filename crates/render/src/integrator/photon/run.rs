@@ -10,17 +10,15 @@
 
 use super::budget::choose_counts;
 use super::gather::{self, PhotonCtx};
-use super::progressive::{iteration_seed, next_radius2, IterState, Progressive};
-use super::radiance::Points;
-use super::radius_field::RadiusField;
-use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
+use super::progressive::{iteration_seed, next_radius2, IterState};
+use super::radius_field::RadiusFields;
+use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii};
 use crate::geometry::Ray;
 use crate::integrator::driver::{PassReport, Start};
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler, Vec3};
+use lumis_math::{Rgb, Sampler};
 use std::sync::atomic::AtomicBool;
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 pub struct PhotonRun<'a> {
@@ -38,36 +36,6 @@ pub struct PhotonRun<'a> {
     photon_time: Duration,
     /// Progressive: every point's initial radii (from iteration 0).
     fields: Option<RadiusFields>,
-}
-
-/// The initial radii of the caustic and global estimates, point by point.
-struct RadiusFields {
-    caustic: Arc<RadiusField>,
-    global: Arc<RadiusField>,
-    global_points: Arc<Points>,
-}
-
-impl RadiusFields {
-    /// From iteration 0's maps: the `nearest`-th photon's distance, up to
-    /// the single map's largest radii (the caustic map's, and the global
-    /// radiance photons'); a given `initialradius` sets the caustic one.
-    fn new(
-        maps: &PhotonMaps,
-        normals: &[Vec3],
-        s: &PhotonSettings,
-        p: &Progressive,
-    ) -> RadiusFields {
-        let caustic = match p.initial_radius > 0.0 {
-            true => RadiusField::constant(p.initial_radius),
-            false => RadiusField::from_map(&maps.caustic, s.nearest, maps.max_radius),
-        };
-        let global_max = maps.max_radius * GLOBAL_RADIUS_SCALE;
-        RadiusFields {
-            caustic: Arc::new(caustic),
-            global: Arc::new(RadiusField::from_map(&maps.global, s.nearest, global_max)),
-            global_points: Arc::new(Points::from_map(&maps.global, normals, RADIANCE_STRIDE)),
-        }
-    }
 }
 
 impl<'a> PhotonRun<'a> {
@@ -177,22 +145,29 @@ impl<'a> PhotonRun<'a> {
         self.totals.add_iteration(&maps.stats);
         self.totals.iteration_photons = (it.global_photons, it.caustic_photons);
         self.totals.render_iterations = it.index + 1;
+        self.totals.counts_chosen = self.time_rule();
         self.maps = Some(maps);
         self.iter = Some(it);
         self.photon_time = t0.elapsed();
         true
     }
 
-    /// Photon counts per iteration: the settings', or under a time budget
-    /// the time rule's (`budget.rs`) when the settings leave them open.
+    /// Whether the time rule chooses the photon counts: under a time
+    /// budget, when the settings leave them open.
+    fn time_rule(&self) -> bool {
+        let share = self.settings.progressive.map_or(0.0, |p| p.photon_share);
+        self.start.time_limit.is_some() && share > 0.0
+    }
+
+    /// Photon counts per iteration: the settings', or the time rule's
+    /// (`budget.rs`).
     fn photon_counts(&self, cancel: &AtomicBool) -> Option<(u64, u64)> {
         let s = self.settings;
-        let p = s.progressive.expect("progressive settings");
-        if self.start.time_limit.is_none() || !(p.photon_share > 0.0) {
+        if !self.time_rule() {
             return Some((s.global_photons, s.caustic_photons));
         }
         let st = &self.start;
-        let share = p.photon_share as f64;
+        let share = s.progressive.map_or(0.0, |p| p.photon_share) as f64;
         choose_counts(
             self.scene,
             s,

@@ -1,0 +1,214 @@
+//! One photon pass: photons traced from the lights into a global and a
+//! caustic map, their kd-trees, and the radiance photons over the global
+//! map; with the query radii of a progressive iteration, if any.
+
+use super::map::PhotonMap;
+use super::radiance::{self, RadiancePhotons};
+use super::radius_field::RadiusField;
+use super::{aim, trace, PhotonSettings};
+use crate::scene::Scene;
+use lumis_math::Vec3;
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Timing and counts of the photon passes, for the summary and benchmarks.
+#[derive(Clone, Debug, Default)]
+pub struct PhotonStats {
+    pub global_stored: usize,
+    pub caustic_stored: usize,
+    pub trace_time: Duration,
+    pub build_time: Duration,
+    pub radiance_time: Duration,
+    pub memory_bytes: usize,
+    /// Progressive iterations begun (0 without the progressive mode); the
+    /// counts and times are then sums over them and the memory their peak.
+    pub iterations: u32,
+    /// Progressive: the caustic radius of the latest iteration.
+    pub caustic_radius: f32,
+    /// Progressive: photons emitted per iteration (global, caustic).
+    pub iteration_photons: (u64, u64),
+    /// Progressive: the time rule chose `iteration_photons` (`budget.rs`).
+    pub counts_chosen: bool,
+    /// Progressive: iterations of the whole render (over all runs of a
+    /// resumed one) begun so far; `iterations` counts this run's photon
+    /// passes.
+    pub render_iterations: u64,
+}
+
+impl PhotonStats {
+    /// Adds one progressive iteration's photon pass: counts and times
+    /// summed, memory the peak, the radius the latest.
+    pub fn add_iteration(&mut self, st: &PhotonStats) {
+        self.global_stored += st.global_stored;
+        self.caustic_stored += st.caustic_stored;
+        self.trace_time += st.trace_time;
+        self.build_time += st.build_time;
+        self.radiance_time += st.radiance_time;
+        self.memory_bytes = self.memory_bytes.max(st.memory_bytes);
+        self.iterations += 1;
+        self.caustic_radius = st.caustic_radius;
+    }
+}
+
+/// Everything the camera pass needs from the photon pass.
+pub struct PhotonMaps {
+    pub global: PhotonMap,
+    pub caustic: PhotonMap,
+    pub radiance: Option<RadiancePhotons>,
+    /// Total emitted power `Phi` (luminance) of all lights.
+    pub phi: f32,
+    pub max_radius: f32,
+    /// Set when caustic photons were aimed: q_1 then uses per-photon fluxes.
+    pub targets: Option<aim::Targets>,
+    /// The fixed radii of the caustic and global estimates (progressive
+    /// iterations); `None`: the `nearest` photons within a largest radius.
+    pub radii: Option<Radii>,
+    pub stats: PhotonStats,
+}
+
+/// The query radii of one progressive iteration: each point's `r_0`
+/// scaled by the iteration's `scale2` (fixed before the iteration).
+#[derive(Clone, Debug)]
+pub struct Radii {
+    pub caustic: Arc<RadiusField>,
+    pub global: Arc<RadiusField>,
+    pub scale2: f32,
+    /// Where the global estimate is precomputed (radiance photons).
+    pub global_points: Arc<radiance::Points>,
+}
+
+impl Radii {
+    /// Squared radius of the caustic estimate at `p`.
+    #[inline]
+    pub fn caustic_r2(&self, p: Vec3) -> f32 {
+        self.caustic.r2_at(p) * self.scale2
+    }
+
+    /// Squared radius of the global estimate at `p`.
+    #[inline]
+    pub fn global_r2(&self, p: Vec3) -> f32 {
+        self.global.r2_at(p) * self.scale2
+    }
+
+    /// The largest global radius of this iteration.
+    pub fn global_max(&self) -> f32 {
+        self.global.max_radius() * self.scale2.sqrt()
+    }
+}
+
+/// One global photon in this many becomes a radiance photon.
+pub const RADIANCE_STRIDE: usize = 4;
+
+/// The global map's largest radius relative to the caustic map's.
+pub const GLOBAL_RADIUS_SCALE: f32 = 5.0;
+
+impl PhotonMaps {
+    /// Traces and builds the maps, radiance photons from the `nearest`
+    /// photons; gives up (`None`) soon after `cancel` is set, so an
+    /// interrupt during a long photon pass ends the render at once.
+    pub fn build(
+        scene: &Scene,
+        s: &PhotonSettings,
+        seed: u64,
+        cancel: &AtomicBool,
+    ) -> Option<PhotonMaps> {
+        let (mut maps, normals) = Self::trace(scene, s, seed, cancel)?;
+        maps.finish(s, &normals, None);
+        Some(maps)
+    }
+
+    /// Traces the photons and builds the maps' trees; [`PhotonMaps::finish`]
+    /// then builds the radiance photons (`normals`: the global photons'
+    /// surface normals).
+    pub fn trace(
+        scene: &Scene,
+        s: &PhotonSettings,
+        seed: u64,
+        cancel: &AtomicBool,
+    ) -> Option<(PhotonMaps, Vec<Vec3>)> {
+        let phi: f32 = scene
+            .lights
+            .iter()
+            .map(|l| l.power(&scene.shapes).luminance())
+            .sum();
+        let max_radius = if s.max_radius > 0.0 {
+            s.max_radius
+        } else {
+            0.02 * scene.bounds.bounding_sphere().1.max(1e-6)
+        };
+        let t0 = Instant::now();
+        let g = trace::trace_photons(
+            scene,
+            s.global_photons,
+            trace::MapKind::Global,
+            seed,
+            s.max_depth,
+            None,
+            cancel,
+        )?;
+        let targets =
+            Some(aim::Targets::from_scene(scene)).filter(|t| s.aim_caustics && !t.is_empty());
+        let c = trace::trace_photons(
+            scene,
+            s.caustic_photons,
+            trace::MapKind::Caustic,
+            seed ^ 0x5eed,
+            s.max_depth,
+            targets.as_ref(),
+            cancel,
+        )?;
+        let trace_time = t0.elapsed();
+        let t1 = Instant::now();
+        let global = PhotonMap::build(g.photons, s.global_photons);
+        let caustic = PhotonMap::build(c.photons, s.caustic_photons);
+        let stats = PhotonStats {
+            global_stored: global.len(),
+            caustic_stored: caustic.len(),
+            trace_time,
+            build_time: t1.elapsed(),
+            ..PhotonStats::default()
+        };
+        let maps = PhotonMaps {
+            global,
+            caustic,
+            radiance: None,
+            phi,
+            max_radius,
+            targets,
+            radii: None,
+            stats,
+        };
+        Some((maps, g.normals))
+    }
+
+    /// Sets the query radii (`None`: nearest photons) and builds the
+    /// radiance photons accordingly, if the settings ask for them.
+    pub fn finish(&mut self, s: &PhotonSettings, normals: &[Vec3], radii: Option<Radii>) {
+        let t2 = Instant::now();
+        self.radiance = match &radii {
+            _ if !s.radiance_photons || self.global.is_empty() => None,
+            Some(r) => Some(RadiancePhotons::fixed(
+                &self.global,
+                r.global_points.clone(),
+                r,
+            )),
+            None => Some(RadiancePhotons::build(
+                &self.global,
+                normals,
+                RADIANCE_STRIDE,
+                s.nearest,
+                self.max_radius * 2.0,
+            )),
+        };
+        let st = &mut self.stats;
+        st.radiance_time = t2.elapsed();
+        st.memory_bytes = self.global.memory_bytes()
+            + self.caustic.memory_bytes()
+            + self.radiance.as_ref().map_or(0, |r| r.memory_bytes());
+        st.caustic_radius = radii
+            .as_ref()
+            .map_or(0.0, |r| (r.caustic.median_r2() * r.scale2).sqrt());
+        self.radii = radii;
+    }
+}
