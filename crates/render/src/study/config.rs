@@ -128,7 +128,9 @@ fn check_name(what: &str, n: &str) -> Result<()> {
 }
 
 impl Config {
-    /// Reads and checks a config; paths become relative to the current folder.
+    /// Reads and checks a config; scene and reference paths become absolute
+    /// (the config's folder joined with them), so that a run's recorded
+    /// arguments do not depend on how the config's path was written.
     pub fn load(path: &Path) -> Result<Config> {
         let text =
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
@@ -141,8 +143,8 @@ impl Config {
         };
         c.dir = std::path::absolute(dir).with_context(|| dir.display().to_string())?;
         for s in &mut c.scenes {
-            s.file = base.join(&s.file);
-            s.reference = base.join(&s.reference);
+            s.file = c.dir.join(&s.file);
+            s.reference = c.dir.join(&s.reference);
         }
         c.check()
             .with_context(|| format!("in {}", path.display()))?;

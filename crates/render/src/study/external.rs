@@ -180,11 +180,13 @@ impl<'a> Externals<'a> {
                 .join("calibration")
                 .join(format!("{}__{}.json", sc.name, st.name));
             let threads = self.c.resolved_threads();
-            let stored = std::fs::read_to_string(&file)
-                .ok()
-                .and_then(|t| serde_json::from_str::<Calibration>(&t).ok())
-                .filter(|cal| cal.command == key && cal.threads == threads);
-            let cal = match stored {
+            let stored = || {
+                std::fs::read_to_string(&file)
+                    .ok()
+                    .and_then(|t| serde_json::from_str::<Calibration>(&t).ok())
+                    .filter(|cal| cal.command == key && cal.threads == threads)
+            };
+            let cal = match stored() {
                 Some(cal) => cal,
                 None => {
                     let what = format!("calibrating `{}` on `{}`", st.name, sc.name);
@@ -193,8 +195,16 @@ impl<'a> Externals<'a> {
                     else {
                         return Ok(None);
                     };
-                    write_atomic(&file, serde_json::to_string_pretty(&cal)?.as_bytes())?;
-                    cal
+                    // A study of the same config running beside this one (one
+                    // process per seed) may have stored its calibration
+                    // meanwhile: keep the first, so both plan the same runs.
+                    match stored() {
+                        Some(first) => first,
+                        None => {
+                            write_atomic(&file, serde_json::to_string_pretty(&cal)?.as_bytes())?;
+                            cal
+                        }
+                    }
                 }
             };
             self.calibrations.insert((scene, setting), cal);
