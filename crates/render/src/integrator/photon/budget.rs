@@ -1,7 +1,7 @@
 //! The progressive mode's time rule: under a time budget, when the photon
 //! counts are not set, the renderer chooses them so that photon tracing
 //! takes a fixed share of every iteration's time (`photonshare`, by default
-//! one half). Photon tracing and camera samples attack different errors
+//! a quarter). Photon tracing and camera samples attack different errors
 //! (the photon maps' variance and bias; the gather rays', the direct light's
 //! and the pixel's), and the balance that minimises the sum is a property of
 //! the scene's cost, which only timing can see: a scene whose photons mostly
