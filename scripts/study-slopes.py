@@ -101,15 +101,20 @@ def main():
         path_name = args[args.index("--path") + 1]
     refs = args[args.index("--refs") + 1] if "--refs" in args else None
     ref_noise = float(args[args.index("--ref-noise") + 1]) if "--ref-noise" in args else None
-    runs = []
+    records = []
     for name in sorted(glob.glob(os.path.join(folder, "runs", "*.json"))):
         with open(name) as f:
-            r = json.load(f)
-        if r.get(metric) is None or not r.get("seconds"):
-            continue
-        runs.append(r)
+            records.append(json.load(f))
+    if not records and os.path.exists(os.path.join(folder, "metrics.json")):
+        # a committed report keeps its records in metrics.json only
+        with open(os.path.join(folder, "metrics.json")) as f:
+            records = json.load(f)["runs"]
+    runs = sorted(
+        (r for r in records if r.get(metric) is not None and r.get("seconds")),
+        key=lambda r: r["id"],
+    )
     if not runs:
-        sys.exit(f"no finished runs in {folder}/runs")
+        sys.exit(f"no finished runs in {folder}/runs or {folder}/metrics.json")
     by_scene = defaultdict(list)
     for r in runs:
         by_scene[r["scene"]].append(r)
