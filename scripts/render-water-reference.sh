@@ -28,28 +28,26 @@ fi
 start="$(date -u +%Y-%m-%dT%H:%MZ), load $(cut -d' ' -f1-3 /proc/loadavg)"
 status=0
 log=$(nice -n 19 "$LUMIS" "$@" 2>&1) || status=$?
+# Appends this run to the sidecar: $1 the sample count line, $2 how it ended.
+sidecar() {
+    {
+        echo "reference for $SCENE"
+        echo "command: lumis render $SCENE $ARGS --checkpoint $CKPT --checkpoint-every 300 (under nice -n 19)"
+        echo "samples per pixel: $1"
+        echo "this run: started $start; $2 $(date -u +%Y-%m-%dT%H:%MZ) on $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+        printf '%s\n' "$log"
+    } >>scenes/water/ref/water.txt
+}
 if [ "$status" -eq 130 ]; then
     # interrupted: lumis wrote the image so far and the checkpoint; record
     # its true sample count (a later run resumes and appends again)
     spp=$(printf '%s\n' "$log" | sed -n 's/.*wrote the image so far (\([0-9]*\) spp).*/\1/p' | tail -1)
-    {
-        echo "reference for $SCENE"
-        echo "command: lumis render $SCENE $ARGS --checkpoint CKPT --checkpoint-every 300 (under nice -n 19)"
-        echo "samples per pixel: ${spp:-unknown} (interrupted: the image so far; $SPP planned)"
-        echo "this run: started $start; interrupted $(date -u +%Y-%m-%dT%H:%MZ) on $(nproc) cores"
-        printf '%s\n' "$log"
-    } >>scenes/water/ref/water.txt
+    sidecar "${spp:-unknown} (interrupted: the image so far; $SPP planned)" interrupted
 fi
 if [ "$status" -ne 0 ]; then
     # interrupted (130) or failed: the checkpoint holds what was done
     printf '%s\n' "$log" >&2
     exit "$status"
 fi
-{
-    echo "reference for $SCENE"
-    echo "command: lumis render $SCENE $ARGS --checkpoint $CKPT --checkpoint-every 300 (under nice -n 19)"
-    echo "samples per pixel: $SPP"
-    echo "this run: started $start; finished $(date -u +%Y-%m-%dT%H:%MZ) on $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
-    printf '%s\n' "$log"
-} >>scenes/water/ref/water.txt
+sidecar "$SPP" finished
 printf '%s\n' "$log" | tail -1
