@@ -62,6 +62,7 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.caustic_photons = count("causticphotons", s.caustic_photons)?;
     s.nearest = count("nearest", s.nearest as u64)?.max(1) as usize;
     s.gather_rays = count("gatherrays", s.gather_rays as u64)? as u32;
+    s.specular_splits = count("specularsplits", s.specular_splits as u64)?.min(64) as u32;
     s.max_radius = p.get_float("maxradius", s.max_radius)?;
     s.caustics = choice(
         e,

@@ -45,6 +45,9 @@ pub struct PhotonSettings {
     pub nearest: usize,
     /// `m_2`: final-gather rays at the first non-delta camera hit.
     pub gather_rays: u32,
+    /// Camera paths follow both lobes of the first this-many smooth
+    /// dielectric interfaces they meet (see `gather.rs`).
+    pub specular_splits: u32,
     /// Largest photon search radius (scene units); 0 = 2% of the scene's bounding radius.
     pub max_radius: f32,
     pub caustics: CausticMode,
@@ -72,6 +75,7 @@ pub const PROGRESSIVE_PHOTONS: (u64, u64) = (PROG_GLOBAL, PROG_CAUSTIC);
 const PROG_GLOBAL: u64 = 40_000;
 const PROG_CAUSTIC: u64 = 200_000;
 const PROG_GATHER_RAYS: u32 = 4;
+const PROG_SPECULAR_SPLITS: u32 = 4;
 
 impl Default for PhotonSettings {
     /// The progressive mode's defaults.
@@ -80,6 +84,7 @@ impl Default for PhotonSettings {
             global_photons: PROG_GLOBAL,
             caustic_photons: PROG_CAUSTIC,
             gather_rays: PROG_GATHER_RAYS,
+            specular_splits: PROG_SPECULAR_SPLITS,
             progressive: Some(Progressive::default()),
             ..PhotonSettings::single_map()
         }
@@ -95,6 +100,7 @@ impl PhotonSettings {
             caustic_photons: 1_000_000,
             nearest: 50,
             gather_rays: 16,
+            specular_splits: 0,
             max_radius: 0.0,
             caustics: CausticMode::Mis,
             heuristic: Heuristic::Balance,
@@ -131,6 +137,7 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("integer", "causticphotons", "caustic-photons", "N", "photons emitted for the caustic map"),
     spec("integer", "nearest", "nearest", "M1", "nearest photons per estimate (m_1)"),
     spec("integer", "gatherrays", "gather-rays", "M2", "final-gather rays per shading point (m_2)"),
+    spec("integer", "specularsplits", "specular-splits", "K", "camera paths follow both the reflection and the refraction (each weighted by Fresnel) at the first K smooth dielectric interfaces they meet, instead of choosing one"),
     spec("float", "maxradius", "max-radius", "R", "largest photon search radius in scene units (0: 2% of the scene radius)"),
     spec("string", "caustics", "caustics", "mis|photons|gather", "caustics from `mis` (the seed's weights), `photons` only or `gather` rays only"),
     spec("string", "heuristic", "heuristic", "balance|power", "MIS heuristic for the caustic weights"),
