@@ -11,7 +11,8 @@
 //! The counts are chosen once, before iteration 0, from short probes (photon
 //! passes at two small fractions of the counts, with a stream no iteration
 //! uses, for the fixed and the per-photon cost; camera samples at one pixel
-//! in 32 or more), and kept for every iteration, so the render is an
+//! in 32 or more), each the fastest of up to three while they take at most
+//! 3% of the budget, and kept for every iteration, so the render is an
 //! ordinary fixed-count one: the counts and the iteration count it reached
 //! reproduce it exactly without a time budget.
 
@@ -31,6 +32,13 @@ const PROBE_PIXELS: u64 = 32;
 /// Probes are lengthened until they take this long (seconds), so fixed
 /// costs and timer noise do not dominate them.
 const PROBE_SECS: f64 = 0.04;
+/// Each probe is taken up to this many times and its fastest kept: another
+/// process taking the core for a few of a probe's milliseconds slows one
+/// repeat, rarely all of them ...
+const PROBE_REPEATS: usize = 3;
+/// ... as long as the probes take at most this share of the time budget
+/// (the first round is always taken).
+const PROBE_SHARE: f64 = 0.03;
 /// The counts stay within this factor of the settings'.
 const MAX_SCALE: f64 = 1024.0;
 
@@ -68,8 +76,10 @@ pub fn choose_counts(
     iteration_spp: u32,
     crop: PixelBounds,
     seed: u64,
+    budget: f64,
     cancel: &AtomicBool,
 ) -> Option<(u64, u64)> {
+    let start = Instant::now();
     // Photon passes (traces, trees, radiance photons) at fractions f and 4f
     // of the counts: a line through the two gives the fixed and per-photon
     // costs. A stream no iteration uses.
@@ -83,7 +93,7 @@ pub fn choose_counts(
         Some((t.elapsed().as_secs_f64(), maps))
     };
     let mut f = 1.0 / 256.0;
-    let (t1, t4, maps) = loop {
+    let (mut t1, mut t4, maps) = loop {
         let (t1, _) = pass(f)?;
         let (t4, maps) = pass(4.0 * f)?;
         if t4 >= PROBE_SECS || f >= 0.25 {
@@ -91,9 +101,20 @@ pub fn choose_counts(
         }
         f *= 4.0;
     };
+    let t_camera = Instant::now();
+    let mut camera = camera_probe(scene, s, &maps, crop, seed);
+    let round = t1 + t4 + t_camera.elapsed().as_secs_f64();
+    for _ in 1..PROBE_REPEATS {
+        if start.elapsed().as_secs_f64() + round > PROBE_SHARE * budget {
+            break;
+        }
+        t1 = t1.min(pass(f)?.0);
+        t4 = t4.min(pass(4.0 * f)?.0);
+        camera = camera.min(camera_probe(scene, s, &maps, crop, seed));
+    }
     let per_unit = ((t4 - t1) / (3.0 * f)).max(t4 / (4.0 * f) * 0.5);
     let fixed = (t1 - per_unit * f).max(0.0);
-    let camera_secs = camera_probe(scene, s, &maps, crop, seed) * iteration_spp as f64;
+    let camera_secs = camera * iteration_spp as f64;
     let k = photon_scale(share, fixed, per_unit, camera_secs);
     let mut counts = (
         round_count(s.global_photons as f64 * k),

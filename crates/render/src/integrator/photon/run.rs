@@ -175,6 +175,7 @@ impl<'a> PhotonRun<'a> {
             self.iteration_spp(),
             st.crop,
             st.seed,
+            st.time_limit.map_or(0.0, |t| t.as_secs_f64()),
             cancel,
         )
     }
