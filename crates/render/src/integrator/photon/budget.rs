@@ -20,6 +20,7 @@ use super::gather::{self, PhotonCtx};
 use super::progressive::iteration_seed;
 use super::{check_memory, PhotonMaps, PhotonSettings};
 use crate::film::PixelBounds;
+use crate::integrator::driver::Start;
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
 use lumis_math::{Sampler, SamplerKind, Vec2};
@@ -74,11 +75,11 @@ pub fn choose_counts(
     s: &PhotonSettings,
     share: f64,
     iteration_spp: u32,
-    crop: PixelBounds,
-    seed: u64,
-    budget: f64,
+    render: &Start,
     cancel: &AtomicBool,
 ) -> Option<(u64, u64)> {
+    let (crop, seed) = (render.crop, render.seed);
+    let budget = render.time_limit.map_or(0.0, |t| t.as_secs_f64());
     let start = Instant::now();
     // Photon passes (traces, trees, radiance photons) at fractions f and 4f
     // of the counts: a line through the two gives the fixed and per-photon

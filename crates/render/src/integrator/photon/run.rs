@@ -168,16 +168,7 @@ impl<'a> PhotonRun<'a> {
         }
         let st = &self.start;
         let share = s.progressive.map_or(0.0, |p| p.photon_share) as f64;
-        choose_counts(
-            self.scene,
-            s,
-            share,
-            self.iteration_spp(),
-            st.crop,
-            st.seed,
-            st.time_limit.map_or(0.0, |t| t.as_secs_f64()),
-            cancel,
-        )
+        choose_counts(self.scene, s, share, self.iteration_spp(), st, cancel)
     }
 
     #[inline]
