@@ -34,9 +34,10 @@ pub fn print(l: &LoadedScene, out: &RenderOutcome, ph: &Phases) {
     let p = l.options.integrator.photon();
     let ps = out.photon_stats.as_ref();
     if let (Some(ps), Some(p)) = (ps, p) {
+        let (global, caustic) = ps.emitted(p);
         eprintln!(
             "  photons      global map {} stored of {} emitted, caustic map {} stored of {} emitted",
-            ps.global_stored, p.global_photons, ps.caustic_stored, p.caustic_photons
+            ps.global_stored, global, ps.caustic_stored, caustic
         );
     }
     let shapes = l.scene.shapes.memory_bytes();

@@ -49,6 +49,18 @@ impl PhotonStats {
         self.iterations += 1;
         self.caustic_radius = st.caustic_radius;
     }
+
+    /// Photons emitted (global, caustic) by the photon passes these stats
+    /// count: the settings' counts for one map, the iterations' counts
+    /// (which the time rule may have chosen) times this run's iterations
+    /// for the progressive mode.
+    pub fn emitted(&self, s: &PhotonSettings) -> (u64, u64) {
+        if self.iterations == 0 {
+            return (s.global_photons, s.caustic_photons);
+        }
+        let n = self.iterations as u64;
+        (self.iteration_photons.0 * n, self.iteration_photons.1 * n)
+    }
 }
 
 /// Everything the camera pass needs from the photon pass.
@@ -210,5 +222,23 @@ impl PhotonMaps {
             .as_ref()
             .map_or(0.0, |r| (r.caustic.median_r2() * r.scale2).sqrt());
         self.radii = radii;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn emitted_counts_the_iterations_photons() {
+        let s = PhotonSettings::default();
+        let mut st = PhotonStats::default();
+        assert_eq!(st.emitted(&s), (s.global_photons, s.caustic_photons));
+        st.iteration_photons = (6400, 32000);
+        let pass = PhotonStats::default();
+        for _ in 0..3 {
+            st.add_iteration(&pass);
+        }
+        assert_eq!(st.emitted(&s), (19200, 96000));
     }
 }
