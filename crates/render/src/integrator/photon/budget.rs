@@ -16,7 +16,8 @@
 //! ordinary fixed-count one: the counts and the iteration count it reached
 //! reproduce it exactly without a time budget.
 
-use super::gather::{self, PhotonCtx};
+use super::camera;
+use super::gather::PhotonCtx;
 use super::progressive::iteration_seed;
 use super::{check_memory, PhotonMaps, PhotonSettings};
 use crate::film::PixelBounds;
@@ -166,7 +167,7 @@ fn camera_probe(
             let p_film = Vec2::new(px as f32, py as f32) + sampler.get_2d();
             let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
             let mut rays = RayCounts::default();
-            std::hint::black_box(gather::li(&ctx, ray, &mut sampler, &mut rays));
+            std::hint::black_box(camera::li(&ctx, ray, &mut sampler, &mut rays));
         });
         let secs = t.elapsed().as_secs_f64();
         if secs >= PROBE_SECS || d == 1 {

@@ -1,12 +1,12 @@
-//! Camera paths of the photon integrator: Whitted-style through perfectly
-//! specular surfaces, then at the first non-delta hit `x`: emission, direct
+//! Shading at a camera path's non-delta hit `x` (`camera.rs` brings the
+//! paths there): emission, direct
 //! light (light sampling MIS'd with the gather rays), caustics (caustic
 //! photons and gather rays through specular chains, weighted by the seed's
 //! `w_1`, `w_2`) and indirect light (gather rays reading the global map at
 //! their first non-delta hit; along glossy surfaces the same rules recurse).
 
 use super::aim::emitted_flux;
-use super::weights::{q1, q2, w1, w2, Alpha, AlphaMode};
+use super::weights::{q1, q2, w1, w2, Alpha};
 use super::{Kernel, PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE};
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
@@ -34,136 +34,11 @@ thread_local! {
 
 const CONE_K: f32 = 1.1;
 
-/// Radiance along a camera ray.
-pub fn li(
-    ctx: &PhotonCtx,
-    ray: Ray,
-    sampler: &mut Sampler,
-    rays: &mut crate::integrator::RayCounts,
-) -> Rgb {
-    let mut splits = ctx.s.specular_splits;
-    let start = Branch {
-        ray,
-        beta: Rgb::WHITE,
-        depth: 0,
-        first: true,
-    };
-    trace_camera(ctx, start, &mut splits, sampler, rays)
-}
-
-/// Where a camera path (or one branch of it) continues.
-struct Branch {
-    ray: Ray,
-    beta: Rgb,
-    depth: u32,
-    first: bool,
-}
-
-/// The radiance a camera path brings from `b` on. At a smooth dielectric,
-/// while `splits` lasts, both the reflection and the refraction are
-/// followed, each weighted by its Fresnel factor, instead of one chosen with
-/// that probability: a light seen in a glass surface then comes as a steady
-/// few per cent of its radiance rather than as its full radiance in a few
-/// per cent of the samples, the brightest outliers of a small light.
-fn trace_camera(
-    ctx: &PhotonCtx,
-    b: Branch,
-    splits: &mut u32,
-    sampler: &mut Sampler,
-    rays: &mut crate::integrator::RayCounts,
-) -> Rgb {
-    let scene = ctx.scene;
-    let Branch {
-        mut ray,
-        mut beta,
-        depth: start,
-        mut first,
-    } = b;
-    let mut l = Rgb::BLACK;
-    for depth in start..=ctx.s.max_depth {
-        if depth == 0 {
-            rays.camera += 1;
-        } else {
-            rays.indirect += 1;
-        }
-        let Some(hit) = scene.intersect(&ray) else {
-            return l + beta * escaped_mis_n(scene, &ray, ray.o, 0.0, 0.0, true);
-        };
-        l += beta * emitted_mis_n(scene, &hit, &ray, ray.o, 0.0, 0.0, true);
-        let bsdf = scene.bsdf(&hit, -ray.d);
-        let wo = -ray.d;
-        if bsdf.is_delta() {
-            if *splits > 0 && bsdf.has_transmission() {
-                if let Some((r, t)) = fresnel_branches(&hit, &bsdf, wo) {
-                    *splits -= 1;
-                    let reflected = Branch {
-                        ray: r.1,
-                        beta: beta * r.0,
-                        depth: depth + 1,
-                        first,
-                    };
-                    l += trace_camera(ctx, reflected, splits, sampler, rays);
-                    beta *= t.0;
-                    ray = t.1;
-                    continue;
-                }
-            }
-            let (uc, u) = (sampler.get_1d(), sampler.get_2d());
-            let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
-                return l;
-            };
-            beta *= bs.weight(hit.geom.ns);
-            ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
-            continue;
-        }
-        let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || {
-            let f = &scene.textures.footprint;
-            f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
-        });
-        let m2 = ctx.s.gather_rays;
-        l += beta * shade(ctx, &hit, &bsdf, wo, alpha, m2, depth, sampler, rays);
-        // `shade` covers the non-delta part; a BSDF with a delta lobe (a
-        // smooth coat) also continues along one sample when it is delta.
-        match delta_lobe_sample(&hit, &bsdf, wo, sampler) {
-            Some((weight, next)) => {
-                beta *= weight;
-                ray = next;
-                first = false;
-            }
-            None => return l,
-        }
-    }
-    l
-}
-
-/// The reflection and the refraction of a smooth two-lobe interface, each
-/// with its throughput factor `f |cos|` (the Fresnel weight, without the
-/// probability of choosing it) and direction; `None` where only one lobe
-/// exists (total internal reflection, a conductor).
-fn fresnel_lobes(bsdf: &SurfaceBsdf, wo: Vec3, ns: Vec3) -> Option<[(Rgb, Vec3); 2]> {
-    // Smooth interfaces choose reflection for `uc` below its probability
-    // and refraction above it.
-    let lobe = |uc: f32| {
-        let bs = bsdf.sample(wo, uc, Vec2::new(0.5, 0.5), TransportMode::Radiance)?;
-        Some((bs.transmission, bs.f * bs.wi.dot(ns).abs(), bs.wi))
-    };
-    let (r_trans, r_w, r_wi) = lobe(0.0)?;
-    let (t_trans, t_w, t_wi) = lobe(1.0 - f32::EPSILON / 2.0)?;
-    (!r_trans && t_trans).then_some([(r_w, r_wi), (t_w, t_wi)])
-}
-
-/// [`fresnel_lobes`] with their continuation rays from `hit`.
-fn fresnel_branches(hit: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Option<((Rgb, Ray), (Rgb, Ray))> {
-    let [r, t] = fresnel_lobes(bsdf, wo, hit.geom.ns)?;
-    let ray = |wi| spawn_ray(hit.geom.p, hit.geom.ng, wi);
-    Some(((r.0, ray(r.1)), (t.0, ray(t.1))))
-}
-
 /// For a non-delta BSDF with a delta lobe: one BSDF sample, kept (weight
 /// and continuation ray) only when it is delta. The delta part's estimate is
 /// then unbiased, and the non-delta part is estimated elsewhere by samples
 /// that skip delta ones.
-fn delta_lobe_sample(
+pub(super) fn delta_lobe_sample(
     hit: &Hit,
     bsdf: &SurfaceBsdf,
     wo: Vec3,
@@ -179,31 +54,6 @@ fn delta_lobe_sample(
     }
     let weight = bs.weight(hit.geom.ns);
     Some((weight, spawn_ray(hit.geom.p, hit.geom.ng, bs.wi)))
-}
-
-/// `alpha` of `q_1` at a shading point (seed, A.10): from the samples per
-/// pixel at the camera path's first non-delta hit (and, in `footprint` mode,
-/// the area there that the pixel's samples spread over), 1 elsewhere.
-pub fn alpha_at(
-    mode: AlphaMode,
-    alpha_first: f32,
-    first_camera_hit: bool,
-    pixel_area: impl FnOnce() -> f32,
-) -> Alpha {
-    if !first_camera_hit {
-        return Alpha::ONE;
-    }
-    match mode {
-        AlphaMode::One => Alpha::ONE,
-        AlphaMode::Spp => Alpha {
-            spp: alpha_first,
-            pixel_area: 0.0,
-        },
-        AlphaMode::Footprint => Alpha {
-            spp: alpha_first,
-            pixel_area: pixel_area(),
-        },
-    }
 }
 
 /// Light leaving non-delta point `x` towards `wo`, excluding its emission.
@@ -532,72 +382,6 @@ fn boundary_photon(found: &[(u32, f32)], k: usize, r2: f32) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn alpha_applies_only_at_the_first_camera_hit() {
-        assert_eq!(PhotonSettings::default().alpha, AlphaMode::Footprint);
-        let area = || 2e-3;
-        let at = |m, first| alpha_at(m, 64.0, first, area).effective(1e-3);
-        // The seed's: spp at the first hit, whatever the footprint.
-        assert_eq!(at(AlphaMode::Spp, true), 64.0);
-        // Footprint twice the disc: rho = 1/3.
-        assert!((at(AlphaMode::Footprint, true) - 22.0).abs() < 1e-4);
-        for m in [AlphaMode::Spp, AlphaMode::Footprint, AlphaMode::One] {
-            assert_eq!(at(m, false), 1.0);
-        }
-        assert_eq!(at(AlphaMode::One, true), 1.0);
-    }
-
-    /// Following both lobes with their Fresnel weights has the expectation
-    /// of choosing one: at every angle, from either side, the two weights
-    /// sum to the mean weight of many stochastic samples, and total
-    /// internal reflection (one lobe) is not split.
-    #[test]
-    fn fresnel_branches_have_the_expectation_of_one_chosen_lobe() {
-        use crate::bsdf::{Bsdf, Dielectric, ThinDielectric};
-        use lumis_math::Frame;
-        let n = Vec3::Z;
-        let interfaces = [
-            Bsdf::Dielectric(Dielectric::new(1.5, 0.0, 0.0)),
-            Bsdf::Dielectric(Dielectric::new(1.33, 0.0, 0.0)),
-            Bsdf::ThinDielectric(ThinDielectric::new(1.5)),
-        ];
-        let mut split = 0;
-        for b in interfaces {
-            let bsdf = SurfaceBsdf::new(Frame::from_normal(n), n, b);
-            for k in 0..24 {
-                let cos = -0.98 + 1.96 * (k as f32 + 0.5) / 24.0;
-                let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, cos);
-                let runs = 4096;
-                let mut mean = 0.0f64;
-                let mut lobes = [false, false];
-                for j in 0..runs {
-                    let uc = (j as f32 + 0.5) / runs as f32;
-                    let bs = bsdf.sample(wo, uc, Vec2::new(0.5, 0.5), TransportMode::Radiance);
-                    if let Some(bs) = bs {
-                        mean += bs.weight(n).r as f64 / runs as f64;
-                        lobes[bs.transmission as usize] = true;
-                    }
-                }
-                match fresnel_lobes(&bsdf, wo, n) {
-                    Some([r, t]) => {
-                        split += 1;
-                        let sum = (r.0.r + t.0.r) as f64;
-                        assert!(
-                            (sum - mean).abs() < 2e-3 * mean.max(1.0),
-                            "{b:?} cos {cos}: {sum} vs {mean}"
-                        );
-                        assert!(r.1.z * wo.z > 0.0 && t.1.z * wo.z < 0.0);
-                    }
-                    None => assert!(
-                        !(lobes[0] && lobes[1]),
-                        "{b:?} cos {cos}: two lobes, not split"
-                    ),
-                }
-            }
-        }
-        assert!(split > 50, "{split} of 72 split");
-    }
 
     #[test]
     fn boundary_photon_is_left_out_only_when_k_were_found() {

@@ -10,6 +10,7 @@
 
 pub mod aim;
 pub mod budget;
+pub mod camera;
 pub mod gather;
 pub mod map;
 pub mod pass;

@@ -9,7 +9,8 @@
 //! iteration's maps, and `alpha` is the iteration's samples per pixel.
 
 use super::budget::choose_counts;
-use super::gather::{self, PhotonCtx};
+use super::camera;
+use super::gather::PhotonCtx;
 use super::progressive::{iteration_seed, next_radius2, IterState};
 use super::radius_field::RadiusFields;
 use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii};
@@ -184,7 +185,7 @@ impl<'a> PhotonRun<'a> {
             alpha_first: self.alpha,
             pixel_spread: self.start.pixel_spread,
         };
-        gather::li(&ctx, ray, sampler, rays)
+        camera::li(&ctx, ray, sampler, rays)
     }
 
     /// The time the render's next indivisible step would take after the
