@@ -8,7 +8,6 @@ use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::integrator::lighting::{emitted_mis_n, escaped_mis_n};
-use crate::scene::Hit;
 use lumis_math::{Rgb, Sampler, Vec2, Vec3};
 
 /// Radiance along a camera ray.
@@ -71,17 +70,17 @@ fn trace_camera(
         let wo = -ray.d;
         if bsdf.is_delta() {
             if *splits > 0 && bsdf.has_transmission() {
-                if let Some((r, t)) = fresnel_branches(&hit, &bsdf, wo) {
+                if let Some([(r_w, r_wi), (t_w, t_wi)]) = fresnel_lobes(&bsdf, wo, hit.geom.ns) {
                     *splits -= 1;
                     let reflected = Branch {
-                        ray: r.1,
-                        beta: beta * r.0,
+                        ray: spawn_ray(hit.geom.p, hit.geom.ng, r_wi),
+                        beta: beta * r_w,
                         depth: depth + 1,
                         first,
                     };
                     l += trace_camera(ctx, reflected, splits, sampler, rays);
-                    beta *= t.0;
-                    ray = t.1;
+                    beta *= t_w;
+                    ray = spawn_ray(hit.geom.p, hit.geom.ng, t_wi);
                     continue;
                 }
             }
@@ -127,13 +126,6 @@ fn fresnel_lobes(bsdf: &SurfaceBsdf, wo: Vec3, ns: Vec3) -> Option<[(Rgb, Vec3);
     let (r_trans, r_w, r_wi) = lobe(0.0)?;
     let (t_trans, t_w, t_wi) = lobe(1.0 - f32::EPSILON / 2.0)?;
     (!r_trans && t_trans).then_some([(r_w, r_wi), (t_w, t_wi)])
-}
-
-/// [`fresnel_lobes`] with their continuation rays from `hit`.
-fn fresnel_branches(hit: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Option<((Rgb, Ray), (Rgb, Ray))> {
-    let [r, t] = fresnel_lobes(bsdf, wo, hit.geom.ns)?;
-    let ray = |wi| spawn_ray(hit.geom.p, hit.geom.ng, wi);
-    Some(((r.0, ray(r.1)), (t.0, ray(t.1))))
 }
 
 /// `alpha` of `q_1` at a shading point (seed, A.10): from the samples per

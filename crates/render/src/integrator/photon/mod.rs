@@ -47,7 +47,7 @@ pub struct PhotonSettings {
     /// `m_2`: final-gather rays at the first non-delta camera hit.
     pub gather_rays: u32,
     /// Camera paths follow both lobes of the first this-many smooth
-    /// dielectric interfaces they meet (see `gather.rs`).
+    /// dielectric interfaces they meet (see `camera.rs`).
     pub specular_splits: u32,
     /// Largest photon search radius (scene units); 0 = 2% of the scene's bounding radius.
     pub max_radius: f32,
