@@ -77,14 +77,35 @@ impl Sampler {
                 let d = self.dim;
                 self.dim += 2;
                 let seed = self.pixel_hash ^ (d.wrapping_mul(0x9e37_79b9));
-                Vec2::new(
-                    sobol_burley::sample(self.index, d, seed).min(ONE_MINUS_EPSILON),
-                    sobol_burley::sample(self.index, d + 1, seed).min(ONE_MINUS_EPSILON),
-                )
+                let (x, y) = sobol_pair(self.index, d, seed);
+                Vec2::new(x.min(ONE_MINUS_EPSILON), y.min(ONE_MINUS_EPSILON))
             }
             _ => Vec2::new(self.get_1d(), self.get_1d()),
         }
     }
+}
+
+/// `sobol_burley::sample` at dimensions `d` and `d + 1` with one seed, bit
+/// for bit, sharing what the two have in common: the shuffled index and,
+/// when both dimensions are in one set of four, the walk over its bits.
+#[inline]
+fn sobol_pair(index: u32, d: u32, seed: u32) -> (f32, f32) {
+    use sobol_burley::parts::{hash, owen_scramble_rev, sobol_int4_rev, sobol_rev};
+    let shuffled = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+    let (a, b) = if d & 3 != 3 {
+        let v: [u32; 4] = sobol_int4_rev(shuffled, d >> 2).into();
+        (v[(d & 3) as usize], v[(d & 3) as usize + 1])
+    } else {
+        (sobol_rev(shuffled, d), sobol_rev(shuffled, d + 1))
+    };
+    // The per-dimension Owen scramble of `sobol_burley::sample`.
+    let finish = |sobol: u32, dim: u32| {
+        let s = seed.wrapping_mul(0x9c8f_2d3b);
+        let k = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8][dim as usize & 3];
+        let rev = owen_scramble_rev(sobol, hash((dim >> 2) ^ s ^ k));
+        f32::from_bits((rev.reverse_bits() >> 9) | 0x3f80_0000) - 1.0
+    };
+    (finish(a, d), finish(b, d + 1))
 }
 
 #[cfg(test)]
@@ -116,6 +137,20 @@ mod tests {
             seen[(v * 16.0) as usize] += 1;
         }
         assert!(seen.iter().all(|&c| c == 1), "{seen:?}");
+    }
+
+    #[test]
+    fn sobol_pair_is_the_library_sample_bit_for_bit() {
+        for d in 0..sobol_burley::NUM_DIMENSIONS - 1 {
+            for (index, seed) in [(0, 0), (1, 7), (5, 0xdead_beef), (65_535, 12_345)] {
+                let (x, y) = sobol_pair(index, d, seed);
+                assert_eq!(x.to_bits(), sobol_burley::sample(index, d, seed).to_bits());
+                assert_eq!(
+                    y.to_bits(),
+                    sobol_burley::sample(index, d + 1, seed).to_bits()
+                );
+            }
+        }
     }
 
     #[test]
