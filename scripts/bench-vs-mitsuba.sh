@@ -55,6 +55,10 @@ fi
 if [ ! -x "$PBRT" ]; then
   echo "pbrt-v4 not found at $PBRT (set PBRT_DIR): skipping it"
   PBRT=""
+elif rc=$(sh -c '"$1" --help >/dev/null 2>&1; echo $?' _ "$PBRT" 2>/dev/null); [ "$rc" -gt 128 ]; then
+  # The shared build uses AVX-512; without it on this CPU: SIGILL (132).
+  echo "pbrt-v4 at $PBRT cannot run here (killed by signal $((rc - 128))$([ $rc = 132 ] && echo ', SIGILL: instructions this CPU lacks, e.g. AVX-512')): skipping it"
+  PBRT=""
 fi
 
 now() { date +%s.%N; }
