@@ -32,12 +32,36 @@ pub fn lumis_interrupted(dir: &Path, args: &[&str], after: Duration) -> Output {
     child.wait_with_output().unwrap()
 }
 
-/// A fresh empty folder `lumis-<suite>-<name>-<pid>` in the temp dir.
-pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
+/// A fresh empty folder `lumis-<suite>-<name>-<pid>` in the temp dir,
+/// removed when the test passes (kept for a look when it fails).
+pub fn temp_dir(suite: &str, name: &str) -> TempDir {
     let d = std::env::temp_dir().join(format!("lumis-{suite}-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
-    d
+    TempDir(d)
+}
+
+pub struct TempDir(PathBuf);
+
+impl std::ops::Deref for TempDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for TempDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 pub fn stderr(o: &Output) -> String {
