@@ -96,3 +96,17 @@ fn unbalanced_attribute_blocks_say_what_was_expected() {
         "{w:?}"
     );
 }
+
+#[test]
+fn photon_counts_out_of_range_are_located_errors() {
+    let e = error("Integrator \"photon\" \"integer specularsplits\" [ 65 ]\nWorldBegin\n");
+    assert!(e.starts_with("s.pbrt:3:"), "{e}");
+    assert!(
+        e.contains("`specularsplits` must be at most 64, found 65"),
+        "{e}"
+    );
+    let e = error("Integrator \"photon\" \"integer gatherrays\" [ -1 ]\nWorldBegin\n");
+    assert!(e.starts_with("s.pbrt:3:"), "{e}");
+    assert!(e.contains("`gatherrays` must be >= 0"), "{e}");
+    assert!(load("Integrator \"photon\" \"integer specularsplits\" [ 64 ]\nWorldBegin\n").is_ok());
+}

@@ -62,7 +62,16 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.caustic_photons = count("causticphotons", s.caustic_photons)?;
     s.nearest = count("nearest", s.nearest as u64)?.max(1) as usize;
     s.gather_rays = count("gatherrays", s.gather_rays as u64)? as u32;
-    s.specular_splits = count("specularsplits", s.specular_splits as u64)?.min(64) as u32;
+    s.specular_splits = match count("specularsplits", s.specular_splits as u64)? {
+        k @ 0..=64 => k as u32,
+        k => {
+            return Err(Diagnostic::error(
+                &p.loc_of("specularsplits").unwrap_or(e.loc.clone()),
+                format!("`specularsplits` must be at most 64, found {k}"),
+            )
+            .with_help("each split doubles a camera path's branches; `maxdepth` bounds them"))
+        }
+    };
     s.max_radius = p.get_float("maxradius", s.max_radius)?;
     s.caustics = choice(
         e,
