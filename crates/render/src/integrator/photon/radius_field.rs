@@ -4,7 +4,8 @@
 //! them, and read at any point from the nearest sample. Iteration `i` uses
 //! `r_i(x)^2 = r_0(x)^2 prod_{j<i} (j + a) / (j + 1)`, so every point's
 //! radius follows Knaus and Zwicker's sequence and the estimate stays
-//! consistent everywhere.
+//! consistent everywhere. Aimed caustic photons are counted by flux (the
+//! radii an unaimed map would give; `flux_equivalent_k`).
 //!
 //! One radius for the whole scene (the median) is too small where photons
 //! are sparse: the photon estimate's variance grows there and, under the
