@@ -41,6 +41,7 @@ fn a_job_renders_and_records_how_it_was_made() {
     assert_eq!(img.meta("lumis:integrator"), Some("path"));
     assert_eq!(s.write(&img).unwrap(), vec![dir.join("t.pfm")]);
     assert!(dir.join("t.pfm").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -63,4 +64,5 @@ fn outputs_are_checked_first_and_rescued_when_their_folder_vanishes() {
     let rescue = dir.join("x.exr");
     assert!(e.contains(&format!("saved to {}", rescue.display())), "{e}");
     assert!(rescue.exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }
