@@ -86,26 +86,20 @@ impl Sampler {
 }
 
 /// `sobol_burley::sample` at dimensions `d` and `d + 1` with one seed, bit
-/// for bit, sharing what the two have in common: the shuffled index and,
-/// when both dimensions are in one set of four, the walk over its bits.
+/// for bit: when both are in one set of four, the library's `sample_4d`
+/// gives them from one shuffled index and one walk over its bits.
 #[inline]
 fn sobol_pair(index: u32, d: u32, seed: u32) -> (f32, f32) {
-    use sobol_burley::parts::{hash, owen_scramble_rev, sobol_int4_rev, sobol_rev};
-    let shuffled = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
-    let (a, b) = if d & 3 != 3 {
-        let v: [u32; 4] = sobol_int4_rev(shuffled, d >> 2).into();
-        (v[(d & 3) as usize], v[(d & 3) as usize + 1])
+    if d & 3 != 3 {
+        let v = sobol_burley::sample_4d(index, d >> 2, seed);
+        let j = (d & 3) as usize;
+        (v[j], v[j + 1])
     } else {
-        (sobol_rev(shuffled, d), sobol_rev(shuffled, d + 1))
-    };
-    // The per-dimension Owen scramble of `sobol_burley::sample`.
-    let finish = |sobol: u32, dim: u32| {
-        let s = seed.wrapping_mul(0x9c8f_2d3b);
-        let k = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8][dim as usize & 3];
-        let rev = owen_scramble_rev(sobol, hash((dim >> 2) ^ s ^ k));
-        f32::from_bits((rev.reverse_bits() >> 9) | 0x3f80_0000) - 1.0
-    };
-    (finish(a, d), finish(b, d + 1))
+        (
+            sobol_burley::sample(index, d, seed),
+            sobol_burley::sample(index, d + 1, seed),
+        )
+    }
 }
 
 #[cfg(test)]

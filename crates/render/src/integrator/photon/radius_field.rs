@@ -160,13 +160,15 @@ impl RadiusFields {
         p: &Progressive,
     ) -> RadiusFields {
         let aimed = maps.targets.is_some();
-        let k = match aimed {
-            true => flux_equivalent_k(&maps.caustic, s.nearest, maps.phi),
-            false => s.nearest,
-        };
-        let caustic = match p.initial_radius > 0.0 {
-            true => RadiusField::constant(p.initial_radius),
-            false => RadiusField::from_map(&maps.caustic, k, maps.max_radius, aimed),
+        let caustic = match (p.initial_radius > 0.0, aimed) {
+            (true, _) => RadiusField::constant(p.initial_radius),
+            (false, false) => {
+                RadiusField::from_map(&maps.caustic, s.nearest, maps.max_radius, false)
+            }
+            (false, true) => {
+                let k = flux_equivalent_k(&maps.caustic, s.nearest, maps.phi);
+                RadiusField::from_map(&maps.caustic, k, maps.max_radius, true)
+            }
         };
         let global_max = maps.max_radius * GLOBAL_RADIUS_SCALE;
         RadiusFields {
