@@ -8,6 +8,7 @@ pub mod rgb;
 pub mod rng;
 pub mod sampler;
 pub mod sampling;
+pub mod sobol;
 pub mod spectrum;
 pub mod transform;
 
