@@ -2,8 +2,8 @@
 //! sphere and two ray sets. Shared by `benches/bvh.rs`, `benches/scene.rs`
 //! and the `lumis bench` command so all measure the same thing.
 
+use super::tri4::{PacketRay, TriPackets};
 use super::Bvh;
-use crate::geometry::triangle::{intersect_triangle, RayShear};
 use crate::geometry::{Aabb, Ray, TriangleMesh};
 use lumis_math::{Pcg32, Vec3};
 
@@ -116,9 +116,9 @@ fn uniform_sphere(u0: f32, u1: f32) -> Vec3 {
 /// triangle path of `Scene::intersect` without shading or analytic shapes.
 pub struct MeshAccel {
     pub bvh: Bvh,
-    /// Triangle vertices and triangle index in BVH leaf order (the index sits
-    /// next to the vertices so reporting a hit costs no extra cache miss).
-    pub tris: Vec<([Vec3; 3], u32)>,
+    /// Triangle vertices in BVH leaf order, in packets of four, with each
+    /// lane's triangle index.
+    tris: TriPackets,
 }
 
 impl MeshAccel {
@@ -126,46 +126,40 @@ impl MeshAccel {
         let boxes: Vec<Aabb> = (0..mesh.triangle_count() as u32)
             .map(|t| mesh.bounds(t))
             .collect();
-        let bvh = Bvh::build(&boxes);
-        let mut tris = super::mem::huge_vec(bvh.order.len());
-        tris.extend(bvh.order.iter().map(|&t| (mesh.vertices(t), t)));
+        let mut bvh = Bvh::build_aligned(&boxes, 4);
+        let tris = TriPackets::build(&bvh.order, |t| (t, Some(mesh.vertices(t))));
+        bvh.order = Vec::new();
         MeshAccel { bvh, tris }
     }
 
     /// Closest hit `(t, triangle index)`.
     #[inline]
     pub fn closest(&self, ray: &Ray) -> Option<(f32, u32)> {
-        let sh = RayShear::new(ray.d);
-        self.bvh
-            .closest_hinted(
-                ray,
-                |slot, r, tmax| {
-                    intersect_triangle(r, &sh, &self.tris[slot as usize].0, tmax).map(|h| h.0)
-                },
-                |start, count| self.prefetch(start, count),
-            )
-            .map(|(t, slot)| (t, self.tris[slot as usize].1))
+        let pr = PacketRay::new(ray);
+        self.bvh.closest_leaves(
+            ray,
+            |start, count, r, tmax| {
+                let (t, tri, _) = self
+                    .tris
+                    .closest((start, count), r, &pr, tmax, |_, _, _| None)?;
+                Some((t, tri))
+            },
+            |start, count| self.tris.prefetch(start, count),
+        )
     }
 
     /// Whether anything is hit before `ray.tmax`.
     #[inline]
     pub fn any(&self, ray: &Ray) -> bool {
-        let sh = RayShear::new(ray.d);
-        self.bvh.any_hinted(
+        let pr = PacketRay::new(ray);
+        self.bvh.any_leaves(
             ray,
-            |slot, r, tmax| intersect_triangle(r, &sh, &self.tris[slot as usize].0, tmax).is_some(),
-            |start, count| self.prefetch(start, count),
+            |start, count, r, tmax| self.tris.any((start, count), r, &pr, tmax, |_, _, _| false),
+            |start, count| self.tris.prefetch(start, count),
         )
     }
 
-    #[inline(always)]
-    fn prefetch(&self, start: u32, count: u32) {
-        if let Some(t) = self.tris.get(start as usize..(start + count) as usize) {
-            super::mem::prefetch(t);
-        }
-    }
-
     pub fn memory_bytes(&self) -> usize {
-        self.bvh.memory_bytes() + self.tris.len() * std::mem::size_of::<([Vec3; 3], u32)>()
+        self.bvh.memory_bytes() + self.tris.memory_bytes()
     }
 }

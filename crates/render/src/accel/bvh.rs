@@ -203,6 +203,32 @@ impl Bvh {
         }
     }
 
+    /// [`Bvh::build`] with every leaf starting at a multiple of `align`
+    /// slots, so a caller can keep its primitives in packets of `align`; the
+    /// slots between leaves are padding, `u32::MAX` in `order`.
+    pub fn build_aligned(bounds: &[Aabb], align: usize) -> Bvh {
+        let mut bvh = Bvh::build(bounds);
+        let mut leaves = Vec::new();
+        for (n, node) in bvh.nodes.iter().enumerate() {
+            for i in 0..WIDTH {
+                if node.count[i] > 0 {
+                    leaves.push((node.child[i], n, i));
+                }
+            }
+        }
+        leaves.sort_unstable();
+        let mut order = Vec::with_capacity(bvh.order.len() + leaves.len() * (align - 1));
+        for (start, n, i) in leaves {
+            order.resize(order.len().next_multiple_of(align), u32::MAX);
+            let node = &mut bvh.nodes[n];
+            node.child[i] = order.len() as u32;
+            order.extend_from_slice(&bvh.order[start as usize..(start + node.count[i]) as usize]);
+        }
+        order.resize(order.len().next_multiple_of(align), u32::MAX);
+        bvh.order = order;
+        bvh
+    }
+
     pub fn bounds(&self) -> Aabb {
         if self.nodes.is_empty() {
             Aabb::EMPTY
@@ -247,6 +273,32 @@ impl Bvh {
         mut test: impl FnMut(u32, &Ray, f32) -> Option<f32>,
         hint: impl Fn(u32, u32),
     ) -> Option<(f32, u32)> {
+        self.closest_leaves(
+            ray,
+            |start, count, r, mut tmax| {
+                let mut best = None;
+                for slot in start..start + count {
+                    if let Some(t) = test(slot, r, tmax) {
+                        tmax = t;
+                        best = Some((t, slot));
+                    }
+                }
+                best
+            },
+            hint,
+        )
+    }
+
+    /// [`Bvh::closest_hinted`] with the primitives tested a leaf at a time:
+    /// `test(start, count, ray, tmax)` returns the closest hit `(t, slot)`
+    /// with `t < tmax` among slots `start..start + count`.
+    #[inline]
+    pub fn closest_leaves(
+        &self,
+        ray: &Ray,
+        mut test: impl FnMut(u32, u32, &Ray, f32) -> Option<(f32, u32)>,
+        hint: impl Fn(u32, u32),
+    ) -> Option<(f32, u32)> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -265,12 +317,10 @@ impl Bvh {
         };
         loop {
             if cur.count > 0 {
-                for slot in cur.child..cur.child + cur.count {
-                    if let Some(t) = test(slot, ray, tmax) {
-                        tmax = t;
-                        tcull = t * CULL_SLACK;
-                        best = Some((t, slot));
-                    }
+                if let Some((t, slot)) = test(cur.child, cur.count, ray, tmax) {
+                    tmax = t;
+                    tcull = t * CULL_SLACK;
+                    best = Some((t, slot));
                 }
             } else {
                 let node = &self.nodes[cur.child as usize];
@@ -333,6 +383,23 @@ impl Bvh {
         mut test: impl FnMut(u32, &Ray, f32) -> bool,
         hint: impl Fn(u32, u32),
     ) -> bool {
+        self.any_leaves(
+            ray,
+            |start, count, r, tmax| (start..start + count).any(|slot| test(slot, r, tmax)),
+            hint,
+        )
+    }
+
+    /// [`Bvh::any_hinted`] with the primitives tested a leaf at a time:
+    /// `test(start, count, ray, tmax)` says whether any of slots
+    /// `start..start + count` blocks the ray.
+    #[inline]
+    pub fn any_leaves(
+        &self,
+        ray: &Ray,
+        mut test: impl FnMut(u32, u32, &Ray, f32) -> bool,
+        hint: impl Fn(u32, u32),
+    ) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -344,10 +411,8 @@ impl Bvh {
         let (mut child, mut count) = (0u32, 0u32);
         loop {
             if count > 0 {
-                for slot in child..child + count {
-                    if test(slot, ray, tmax) {
-                        return true;
-                    }
+                if test(child, count, ray, tmax) {
+                    return true;
                 }
             } else {
                 let node = &self.nodes[child as usize];

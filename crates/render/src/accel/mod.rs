@@ -13,6 +13,7 @@ mod instance;
 mod level;
 pub mod mem;
 mod prim;
+mod tri4;
 
 pub use bvh::Bvh;
 pub use instance::{Instance, InstanceHit, InstanceSet, Instances};

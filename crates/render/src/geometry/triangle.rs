@@ -70,6 +70,16 @@ pub fn intersect_triangle(
         vv = (ax as f64 * cy as f64 - ay as f64 * cx as f64) as f32;
         w = (bx as f64 * ay as f64 - by as f64 * ax as f64) as f32;
     }
+    let (az, bz, cz) = (sh.sz * a[sh.kz], sh.sz * b[sh.kz], sh.sz * c[sh.kz]);
+    watertight_tail(u, vv, w, [az, bz, cz], tmax)
+}
+
+/// The end of the watertight test from the edge functions `u, vv, w` and
+/// the scaled `z` of the three vertices on: the side test, the distance
+/// against `(0, tmax)` and the barycentrics. The packet test of the
+/// acceleration structure ends with it too, so both give the same bits.
+#[inline(always)]
+pub fn watertight_tail(u: f32, vv: f32, w: f32, z: [f32; 3], tmax: f32) -> Option<(f32, f32, f32)> {
     if (u < 0.0 || vv < 0.0 || w < 0.0) && (u > 0.0 || vv > 0.0 || w > 0.0) {
         return None;
     }
@@ -77,8 +87,7 @@ pub fn intersect_triangle(
     if det == 0.0 {
         return None;
     }
-    let (az, bz, cz) = (sh.sz * a[sh.kz], sh.sz * b[sh.kz], sh.sz * c[sh.kz]);
-    let tt = u * az + vv * bz + w * cz;
+    let tt = u * z[0] + vv * z[1] + w * z[2];
     if det < 0.0 && (tt >= 0.0 || tt < tmax * det) {
         return None;
     }
