@@ -20,6 +20,8 @@ pub struct Sampler {
     seed: u64,
     pixel_hash: u32,
     index: u32,
+    /// `index.reverse_bits()`, as the Sobol points take it.
+    index_rev: u32,
     dim: u32,
     rng: Pcg32,
     sobol: &'static SobolTables,
@@ -32,6 +34,7 @@ impl Sampler {
             seed,
             pixel_hash: 0,
             index: 0,
+            index_rev: 0,
             dim: 0,
             rng: Pcg32::new(seed, 0),
             sobol: SobolTables::get(),
@@ -47,6 +50,7 @@ impl Sampler {
         let h = hash(&[self.seed, x as u64, y as u64]);
         self.pixel_hash = h as u32;
         self.index = index;
+        self.index_rev = index.reverse_bits();
         self.dim = 0;
         self.rng = Pcg32::new(hash(&[h, index as u64]), h >> 1);
     }
@@ -64,7 +68,7 @@ impl Sampler {
             SamplerKind::Sobol if d < sobol_burley::NUM_DIMENSIONS && self.index < (1 << 16) => {
                 let seed = self.pixel_hash ^ (d.wrapping_mul(0x9e37_79b9));
                 self.sobol
-                    .sample(self.index, d, seed)
+                    .sample(self.index_rev, d, seed)
                     .min(ONE_MINUS_EPSILON)
             }
             _ => self.rng.next_f32(),
@@ -82,7 +86,7 @@ impl Sampler {
                 let d = self.dim;
                 self.dim += 2;
                 let seed = self.pixel_hash ^ (d.wrapping_mul(0x9e37_79b9));
-                let (x, y) = self.sobol.pair(self.index, d, seed);
+                let (x, y) = self.sobol.pair(self.index_rev, d, seed);
                 Vec2::new(x.min(ONE_MINUS_EPSILON), y.min(ONE_MINUS_EPSILON))
             }
             _ => Vec2::new(self.get_1d(), self.get_1d()),

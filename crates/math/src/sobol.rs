@@ -62,18 +62,18 @@ impl SobolTables {
         std::array::from_fn(|i| a[i] ^ b[i] ^ c[i] ^ d[i])
     }
 
-    /// `sobol_burley::sample(index, d, seed)`.
+    /// `sobol_burley::sample(index, d, seed)`, given `index.reverse_bits()`.
     #[inline]
-    pub fn sample(&self, index: u32, d: u32, seed: u32) -> f32 {
-        let rev = shuffled_rev(index, seed);
+    pub fn sample(&self, index_rev: u32, d: u32, seed: u32) -> f32 {
+        let rev = shuffled_rev(index_rev, seed);
         finish(self.product(rev, d >> 2)[d as usize & 3], d, seed)
     }
 
-    /// `(sample(index, d, seed), sample(index, d + 1, seed))`: one shuffled
-    /// index for both.
+    /// `(sample(index_rev, d, seed), sample(index_rev, d + 1, seed))`: one
+    /// shuffled index for both.
     #[inline]
-    pub fn pair(&self, index: u32, d: u32, seed: u32) -> (f32, f32) {
-        let rev = shuffled_rev(index, seed);
+    pub fn pair(&self, index_rev: u32, d: u32, seed: u32) -> (f32, f32) {
+        let rev = shuffled_rev(index_rev, seed);
         let p = self.product(rev, d >> 2);
         let j = d as usize & 3;
         let y = if j == 3 {
@@ -85,11 +85,11 @@ impl SobolTables {
     }
 }
 
-/// The sample index, reversed and Owen-shuffled by the seed.
+/// The reversed sample index, Owen-shuffled by the seed.
 #[inline(always)]
-fn shuffled_rev(index: u32, seed: u32) -> u32 {
-    debug_assert!(index < 1 << 16);
-    owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a))
+fn shuffled_rev(index_rev: u32, seed: u32) -> u32 {
+    debug_assert!(index_rev & 0xffff == 0, "indices stop at 2^16");
+    owen_scramble_rev(index_rev, hash(seed ^ 0x79c6_8e4a))
 }
 
 /// Owen-scrambles dimension `d`'s product and maps it to [0, 1).
@@ -114,17 +114,19 @@ mod tests {
                 let index = if k < 16 { k } else { seeds.next_u32() >> 16 };
                 let seed = seeds.next_u32();
                 let want = sobol_burley::sample(index, d, seed).to_bits();
-                assert_eq!(t.sample(index, d, seed).to_bits(), want, "d {d} i {index}");
+                let rev = index.reverse_bits();
+                assert_eq!(t.sample(rev, d, seed).to_bits(), want, "d {d} i {index}");
                 if d + 1 < NUM_DIMENSIONS {
-                    let (x, y) = t.pair(index, d, seed);
+                    let (x, y) = t.pair(rev, d, seed);
                     assert_eq!(x.to_bits(), want);
                     let want_y = sobol_burley::sample(index, d + 1, seed).to_bits();
                     assert_eq!(y.to_bits(), want_y, "d {} i {index}", d + 1);
                 }
             }
         }
-        assert_eq!(t.sample(65_535, 255, u32::MAX).to_bits(), {
-            sobol_burley::sample(65_535, 255, u32::MAX).to_bits()
-        });
+        assert_eq!(
+            t.sample(65_535u32.reverse_bits(), 255, u32::MAX).to_bits(),
+            { sobol_burley::sample(65_535, 255, u32::MAX).to_bits() }
+        );
     }
 }
