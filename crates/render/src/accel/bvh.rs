@@ -177,6 +177,12 @@ struct Entry {
 impl Bvh {
     /// Builds over primitives given by their bounds. Empty boxes are skipped.
     pub fn build(bounds: &[Aabb]) -> Bvh {
+        Bvh::build_blocks(bounds, 1)
+    }
+
+    /// [`Bvh::build`] whose SAH counts primitives in blocks of `block`
+    /// (a leaf of up to `block` primitives costs one test).
+    fn build_blocks(bounds: &[Aabb], block: usize) -> Bvh {
         let mut refs: Vec<PrimRef> = bounds
             .iter()
             .enumerate()
@@ -190,7 +196,7 @@ impl Bvh {
         if refs.is_empty() {
             return Bvh::default();
         }
-        let root = build_rec(&mut refs, 0, 0);
+        let root = build_rec(&mut refs, 0, 0, block);
         let mut nodes = Vec::with_capacity(refs.len() / 4 + 1);
         flatten(&[&root], &mut nodes);
         // Copy into a huge-page backed array of the exact size.
@@ -207,7 +213,7 @@ impl Bvh {
     /// slots, so a caller can keep its primitives in packets of `align`; the
     /// slots between leaves are padding, `u32::MAX` in `order`.
     pub fn build_aligned(bounds: &[Aabb], align: usize) -> Bvh {
-        let mut bvh = Bvh::build(bounds);
+        let mut bvh = Bvh::build_blocks(bounds, align);
         let mut leaves = Vec::new();
         for (n, node) in bvh.nodes.iter().enumerate() {
             for i in 0..WIDTH {
@@ -490,7 +496,8 @@ fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
     (b, c)
 }
 
-fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32) -> BuildNode {
+fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32, block: usize) -> BuildNode {
+    let blocks = |n: u32| n.div_ceil(block as u32) as f32;
     let (bounds, cb) = bounds_of(refs);
     let n = refs.len();
     let leaf = BuildNode::Leaf {
@@ -498,7 +505,7 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32) -> BuildNode {
         start,
         count: n,
     };
-    if n <= 2 {
+    if n <= block.max(2) {
         return leaf;
     }
     let ext = cb.extent();
@@ -514,14 +521,14 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32) -> BuildNode {
         if n <= MAX_LEAF {
             return leaf;
         }
-        return split_at(refs, start, n / 2, bounds, depth);
+        return split_at(refs, start, n / 2, bounds, depth, block);
     }
     if ext[axis] <= 0.0 {
         // All centroids coincide: split in the middle by count if too many for a leaf.
         if n <= MAX_LEAF {
             return leaf;
         }
-        return split_at(refs, start, n / 2, bounds, depth);
+        return split_at(refs, start, n / 2, bounds, depth, block);
     }
     // Binned SAH over all three axes.
     let mut best = (f32::INFINITY, 0usize, 0usize); // cost, axis, split bin
@@ -554,7 +561,7 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32) -> BuildNode {
                 continue;
             }
             let cost =
-                cnt as f32 * acc.surface_area() + right_count[i + 1] as f32 * right_area[i + 1];
+                blocks(cnt) * acc.surface_area() + blocks(right_count[i + 1]) * right_area[i + 1];
             if cost < best.0 {
                 best = (cost, ax, i);
             }
@@ -562,11 +569,11 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32) -> BuildNode {
     }
     let area = bounds.surface_area().max(1e-30);
     let split_cost = TRAVERSAL_COST + best.0 / area;
-    if best.0 == f32::INFINITY || (split_cost >= n as f32 && n <= MAX_LEAF) {
+    if best.0 == f32::INFINITY || (split_cost >= blocks(n as u32) && n <= MAX_LEAF) {
         if n <= MAX_LEAF {
             return leaf;
         }
-        return split_at(refs, start, n / 2, bounds, depth);
+        return split_at(refs, start, n / 2, bounds, depth, block);
     }
     let (ax, bin) = (best.1, best.2);
     let scale = BINS as f32 / ext[ax];
@@ -574,12 +581,19 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32) -> BuildNode {
         (((r.centroid[ax] - cb.min[ax]) * scale) as usize).min(BINS - 1) <= bin
     });
     if mid == 0 || mid == n {
-        return split_at(refs, start, n / 2, bounds, depth);
+        return split_at(refs, start, n / 2, bounds, depth, block);
     }
-    children(refs, start, mid, bounds, depth)
+    children(refs, start, mid, bounds, depth, block)
 }
 
-fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, depth: u32) -> BuildNode {
+fn split_at(
+    refs: &mut [PrimRef],
+    start: usize,
+    mid: usize,
+    bounds: Aabb,
+    depth: u32,
+    block: usize,
+) -> BuildNode {
     let ext = bounds.extent();
     let axis = if ext.x > ext.y && ext.x > ext.z {
         0
@@ -589,21 +603,28 @@ fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, depth:
         2
     };
     refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-    children(refs, start, mid, bounds, depth)
+    children(refs, start, mid, bounds, depth, block)
 }
 
-fn children(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, depth: u32) -> BuildNode {
+fn children(
+    refs: &mut [PrimRef],
+    start: usize,
+    mid: usize,
+    bounds: Aabb,
+    depth: u32,
+    block: usize,
+) -> BuildNode {
     let big = refs.len() > PARALLEL_THRESHOLD;
     let (l, r) = refs.split_at_mut(mid);
     let (a, b) = if big {
         rayon::join(
-            || build_rec(l, start, depth + 1),
-            || build_rec(r, start + mid, depth + 1),
+            || build_rec(l, start, depth + 1, block),
+            || build_rec(r, start + mid, depth + 1, block),
         )
     } else {
         (
-            build_rec(l, start, depth + 1),
-            build_rec(r, start + mid, depth + 1),
+            build_rec(l, start, depth + 1, block),
+            build_rec(r, start + mid, depth + 1, block),
         )
     };
     BuildNode::Interior {
