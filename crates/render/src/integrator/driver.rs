@@ -151,6 +151,7 @@ pub struct Start {
     /// The pixels rendered, and the render's wall-clock budget.
     pub crop: PixelBounds,
     pub time_limit: Option<Duration>,
+    pub sampler: SamplerKind,
 }
 
 /// What an integrator is told after each pass.
@@ -250,6 +251,7 @@ pub fn render_with(
             pixel_spread: settings.filter.sample_spread(),
             crop: settings.crop,
             time_limit: settings.time_limit,
+            sampler: settings.sampler,
         };
         let saved = hooks.resume.as_ref().map(|s| s.integrator.as_slice());
         let mut run = Run::new(integrator, scene, &start, saved);

@@ -44,6 +44,17 @@ pub fn next_radius2(r2: f64, i: u64, a: f64) -> f64 {
     r2 * (i as f64 + a) / (i as f64 + 1.0)
 }
 
+/// Under a time budget, whether to stop after `done` iterations although
+/// the time left would reach `reachable`: at a power of two (from 4 on)
+/// when going on would add at most a quarter. The Sobol sampler's points
+/// are balanced at powers of two, and so is the progressive image, whose
+/// iteration `i` takes each pixel's sample `i`: on the default scene
+/// (docs/measured.md, "Powers of two") 16 iterations have 2.27e-3 MSE, 17
+/// have 2.93e-3 and 20 have 2.44e-3; 24 again less (1.74e-3).
+pub fn stop_at_power_of_two(done: u64, reachable: u64) -> bool {
+    done >= 4 && done.is_power_of_two() && reachable <= done + done / 4
+}
+
 /// The seed of iteration `i`'s photon streams: depends on `(seed, i)` only.
 pub fn iteration_seed(seed: u64, i: u64) -> u64 {
     mix(seed ^ mix(i.wrapping_add(1)))
@@ -126,6 +137,20 @@ mod tests {
         }
         let asymptote = 10_000f64.powf(a - 1.0) / 1.354_117_939;
         assert!((r2 / asymptote - 1.0).abs() < 1e-3, "{r2} vs {asymptote}");
+    }
+
+    #[test]
+    fn time_budgets_stop_at_a_power_of_two_a_quarter_short() {
+        assert!(stop_at_power_of_two(16, 16));
+        assert!(stop_at_power_of_two(16, 17));
+        assert!(stop_at_power_of_two(16, 20));
+        assert!(!stop_at_power_of_two(16, 21));
+        assert!(!stop_at_power_of_two(17, 18));
+        assert!(!stop_at_power_of_two(24, 25));
+        assert!(stop_at_power_of_two(256, 320));
+        assert!(!stop_at_power_of_two(256, 321));
+        // Too few iterations to care: the budget decides.
+        assert!(!stop_at_power_of_two(2, 2));
     }
 
     #[test]

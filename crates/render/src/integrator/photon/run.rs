@@ -11,14 +11,14 @@
 use super::budget::choose_counts;
 use super::camera;
 use super::gather::PhotonCtx;
-use super::progressive::{iteration_seed, next_radius2, IterState};
+use super::progressive::{iteration_seed, next_radius2, stop_at_power_of_two, IterState};
 use super::radius_field::RadiusFields;
 use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii};
 use crate::geometry::Ray;
 use crate::integrator::driver::{PassReport, Start};
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler};
+use lumis_math::{Rgb, Sampler, SamplerKind};
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
@@ -202,7 +202,16 @@ impl<'a> PhotonRun<'a> {
             return None;
         }
         let per_pass = r.pass_time_sum / r.passes_here.max(1);
-        Some(self.photon_time + per_pass * s)
+        let cost = self.photon_time + per_pass * s;
+        if let (Some(t), 0, SamplerKind::Sobol) = (r.time_limit, r.spp_target, self.start.sampler) {
+            let left = t.saturating_sub(r.elapsed).as_secs_f64();
+            let more = (left / cost.as_secs_f64().max(1e-9)).floor() as u64;
+            if stop_at_power_of_two(it.index + 1, it.index + 1 + more) {
+                // More than the time left: the driver stops here.
+                return Some(t);
+            }
+        }
+        Some(cost)
     }
 
     /// With only a time budget, predicts the render's samples per pixel
