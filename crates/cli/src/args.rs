@@ -65,6 +65,14 @@ pub struct BenchArgs {
     /// Smaller sizes (100k triangles, 128x128 images) for a quick look.
     #[arg(long)]
     pub quick: bool,
+    /// How cost grows instead: BVH build, memory and render time against
+    /// triangles (10k to 10M), photon-map build and queries against photons
+    /// (100k to 30M), and the speedup of all threads over one.
+    #[arg(long)]
+    pub scaling: bool,
+    /// Folder for the --scaling plots (SVG) [default: lumis-bench-scaling].
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<std::path::PathBuf>,
 }
 
 #[derive(Args, Debug, Default, Clone)]

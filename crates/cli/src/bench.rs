@@ -19,7 +19,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// Runs `f` `reps` times, returns the median seconds.
-fn time_it(reps: usize, mut f: impl FnMut()) -> f64 {
+pub fn time_it(reps: usize, mut f: impl FnMut()) -> f64 {
     median(
         (0..reps)
             .map(|_| {
@@ -43,7 +43,7 @@ fn render_all(l: &LoadedScene, spp: u32) -> RenderOutcome {
     )
 }
 
-fn single_thread<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+pub fn single_thread<T: Send>(f: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -65,6 +65,9 @@ pub fn peak_memory_mib() -> Option<f64> {
 }
 
 pub fn run(a: BenchArgs) -> Result<()> {
+    if a.scaling {
+        return crate::bench_scaling::run(&a);
+    }
     let reps = if a.quick { 3 } else { 7 };
     let tris = if a.quick { 100_000 } else { 1_000_000 };
     let threads = rayon::current_num_threads();

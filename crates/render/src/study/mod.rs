@@ -11,7 +11,7 @@ pub mod config;
 pub mod error;
 mod external;
 pub mod fit;
-mod plot;
+pub mod plot;
 mod report;
 mod runs;
 mod scene_copy;

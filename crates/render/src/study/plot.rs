@@ -97,6 +97,11 @@ fn esc(s: &str) -> String {
 
 /// The SVG text of a log-log plot of `series` (x: seconds, y: `y_label`).
 pub fn svg(title: &str, y_label: &str, series: &[Series]) -> String {
+    svg_xy(title, "seconds (wall clock, log)", y_label, series)
+}
+
+/// [`svg`] with its own x-axis label (the groups' first values are x).
+pub fn svg_xy(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
     let (w, h) = (490.0, 300.0);
     let (ml, mr, mt, mb) = (62.0, 160.0, 26.0, 42.0);
     let ends: Vec<(f64, f64)> = series
@@ -150,9 +155,10 @@ pub fn svg(title: &str, y_label: &str, series: &[Series]) -> String {
         );
     }
     o += &format!(
-        r#"<text x="{}" y="{}" text-anchor="middle">seconds (wall clock, log)</text>"#,
+        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
         ml + (w - ml - mr) / 2.0,
-        h - 8.0
+        h - 8.0,
+        esc(x_label)
     );
     o += &format!(
         r#"<text transform="translate(14 {}) rotate(-90)" text-anchor="middle">{} (log)</text>"#,
