@@ -2,6 +2,7 @@
 //! Medians of repeated runs; single-thread where a per-thread rate is quoted.
 
 use crate::args::BenchArgs;
+use crate::measure::{peak_memory_mib, single_thread, time_it};
 use anyhow::Result;
 use lumis_math::Vec3;
 use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays, MeshAccel};
@@ -11,25 +12,6 @@ use lumis_render::integrator::{render, RenderOutcome};
 use lumis_render::load::{load_text, LoadedScene, Overrides, DEFAULT_SCENE};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
-use std::time::Instant;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// Runs `f` `reps` times, returns the median seconds.
-pub fn time_it(reps: usize, mut f: impl FnMut()) -> f64 {
-    median(
-        (0..reps)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed().as_secs_f64()
-            })
-            .collect(),
-    )
-}
 
 /// A whole render on all threads, seed 0, no progress display.
 fn render_all(l: &LoadedScene, spp: u32) -> RenderOutcome {
@@ -43,31 +25,7 @@ fn render_all(l: &LoadedScene, spp: u32) -> RenderOutcome {
     )
 }
 
-pub fn single_thread<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .expect("pool")
-        .install(f)
-}
-
-/// Peak resident memory of this process (VmHWM), in MiB.
-pub fn peak_memory_mib() -> Option<f64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let kb: f64 = s
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))?
-        .split_whitespace()
-        .nth(1)?
-        .parse()
-        .ok()?;
-    Some(kb / 1024.0)
-}
-
 pub fn run(a: BenchArgs) -> Result<()> {
-    if a.scaling {
-        return crate::bench_scaling::run(&a);
-    }
     let reps = if a.quick { 3 } else { 7 };
     let tris = if a.quick { 100_000 } else { 1_000_000 };
     let threads = rayon::current_num_threads();

@@ -3,7 +3,7 @@
 //! log-log SVG plots (with fitted slopes) into a folder.
 
 use crate::args::BenchArgs;
-use crate::bench::{peak_memory_mib, single_thread, time_it};
+use crate::measure::{peak_memory_mib, single_thread, time_it};
 use anyhow::{Context, Result};
 use lumis_math::SamplerKind;
 use lumis_math::{Rgb, Transform, Vec3};

@@ -9,6 +9,7 @@ mod bench_scaling;
 mod display;
 mod interrupt;
 mod job;
+mod measure;
 mod progress;
 mod resume;
 mod run;

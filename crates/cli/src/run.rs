@@ -18,6 +18,9 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         None => render_cmd(RenderArgs::default()),
         Some(Command::Render(a)) => render_cmd(*a),
+        Some(Command::Bench(a)) if a.scaling => {
+            crate::bench_scaling::run(&a).map(|_| ExitCode::SUCCESS)
+        }
         Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
         Some(Command::Compare(a)) => compare_cmd(a),
         Some(Command::Study(a)) => crate::study::run(a),
