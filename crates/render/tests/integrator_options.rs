@@ -34,7 +34,7 @@ fn sppm_scenes_render_with_photon() {
 
 #[test]
 fn other_pbrt_integrators_fall_back_to_path() {
-    for ty in ["bdpt", "mlt", "lightpath", "volpath"] {
+    for ty in ["bdpt", "mlt", "volpath"] {
         let l = load(
             &format!(r#"Integrator "{ty}" "integer maxdepth" 4"#),
             &Overrides::default(),
@@ -44,6 +44,19 @@ fn other_pbrt_integrators_fall_back_to_path() {
         assert_eq!(l.warnings.len(), 1, "{ty}: {:?}", l.warnings);
         assert!(l.warnings[0].message.contains("using `path`"));
     }
+}
+
+#[test]
+fn pbrt_lightpath_is_the_light_tracer() {
+    let l = load(
+        r#"Integrator "lightpath" "integer maxdepth" 4"#,
+        &Overrides::default(),
+    );
+    assert_eq!(
+        l.options.integrator,
+        Integrator::LightTracer { max_depth: 4 }
+    );
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
 }
 
 #[test]

@@ -69,6 +69,25 @@ impl Filter {
         )
     }
 
+    /// The density of [`Filter::sample`]'s offsets at `offset` (per square
+    /// pixel): the filter normalised to integrate to one, which is the
+    /// weight a contribution at `offset` from a pixel's centre has in that
+    /// pixel (splats from light paths).
+    pub fn pdf(&self, offset: Vec2) -> f32 {
+        self.pdf_1d(offset.x / self.radius.x) / self.radius.x
+            * self.pdf_1d(offset.y / self.radius.y)
+            / self.radius.y
+    }
+
+    /// Density of `sample_1d` at `t` in [-1, 1] (0 outside).
+    fn pdf_1d(&self, t: f32) -> f32 {
+        if !(t > -1.0 && t < 1.0) {
+            return 0.0;
+        }
+        let i = (((t + 1.0) * 0.5 * TABLE as f32) as usize).min(TABLE - 1);
+        (self.cdf[i + 1] - self.cdf[i]) * TABLE as f32 * 0.5
+    }
+
     /// The area (in pixels) a pixel's samples spread over: `12 sigma_x
     /// sigma_y` of the sampled offsets, which is 1 for a one-pixel box.
     pub fn sample_spread(&self) -> f32 {
@@ -87,6 +106,48 @@ impl Filter {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pdf_integrates_to_one_and_matches_the_samples() {
+        for f in [
+            Filter::boxf(Vec2::splat(0.5)),
+            Filter::triangle(Vec2::new(1.0, 1.5)),
+            Filter::gaussian(Vec2::splat(2.0), 0.5),
+        ] {
+            // Midpoint rule over the support.
+            let n = 400;
+            let (rx, ry) = (f.radius.x, f.radius.y);
+            let mut sum = 0.0f64;
+            for i in 0..n {
+                for j in 0..n {
+                    let x = -rx + 2.0 * rx * (i as f32 + 0.5) / n as f32;
+                    let y = -ry + 2.0 * ry * (j as f32 + 0.5) / n as f32;
+                    sum += f.pdf(Vec2::new(x, y)) as f64;
+                }
+            }
+            sum *= (4.0 * rx * ry) as f64 / (n * n) as f64;
+            assert!((sum - 1.0).abs() < 2e-3, "{}: {sum}", f.name);
+            // Samples fall where the density is: the share of them within
+            // half the radius of the centre along x matches its integral.
+            let inner: f64 = (0..n)
+                .map(|i| -0.5 * rx + rx * (i as f32 + 0.5) / n as f32)
+                .map(|x| f.pdf_1d(x / rx) as f64 / rx as f64)
+                .sum::<f64>()
+                * rx as f64
+                / n as f64;
+            let m = 4000;
+            let hits = (0..m)
+                .filter(|k| {
+                    f.sample(Vec2::new((*k as f32 + 0.5) / m as f32, 0.5))
+                        .x
+                        .abs()
+                        < 0.5 * rx
+                })
+                .count();
+            assert!((hits as f64 / m as f64 - inner).abs() < 5e-3, "{}", f.name);
+        }
+        assert_eq!(Filter::boxf(Vec2::splat(0.5)).pdf(Vec2::new(0.6, 0.0)), 0.0);
+    }
 
     #[test]
     fn box_is_uniform_and_tent_is_peaked() {

@@ -180,13 +180,42 @@ pub struct Splat {
     pub l: Rgb,
 }
 
-/// Per-sample context: the sample's pixel and index, ray counters and the
-/// splat list of the row.
+/// Per-sample context: the sample's pixel and index, ray counters, the
+/// splat list of the row and the pixel filter.
 pub struct SampleCx<'a> {
     pub pixel: (u32, u32),
     pub index: u32,
     pub rays: &'a mut RayCounts,
     pub splats: &'a mut Vec<Splat>,
+    pub filter: &'a Filter,
+}
+
+impl SampleCx<'_> {
+    /// Splats `l` arriving at raster position `p` (full film, pixels, y
+    /// down) into every pixel whose filter reaches it, weighted by the
+    /// filter's density there: the same pixel estimate as the filter's
+    /// importance-sampled camera samples.
+    pub fn splat_at(&mut self, p: Vec2, l: Rgb) {
+        let r = self.filter.radius;
+        let (x0, x1) = ((p.x - 0.5 - r.x).ceil(), (p.x - 0.5 + r.x).floor());
+        let (y0, y1) = ((p.y - 0.5 - r.y).ceil(), (p.y - 0.5 + r.y).floor());
+        let mut y = y0.max(0.0);
+        while y <= y1 {
+            let mut x = x0.max(0.0);
+            while x <= x1 {
+                let w = self.filter.pdf(p - Vec2::new(x + 0.5, y + 0.5));
+                if w > 0.0 {
+                    self.splats.push(Splat {
+                        x: x as u32,
+                        y: y as u32,
+                        l: l * w,
+                    });
+                }
+                x += 1.0;
+            }
+            y += 1.0;
+        }
+    }
 }
 
 /// The integrator side of a render, driven pass by pass.
@@ -412,6 +441,7 @@ fn render_pass<P: Pass>(
                         index: s,
                         rays: &mut t.rays,
                         splats: &mut splats,
+                        filter: &settings.filter,
                     };
                     let l = pass.li(ray, &mut sampler, &mut cx);
                     match accept(l, settings.clamp) {

@@ -18,6 +18,7 @@
 pub mod direct;
 pub mod driver;
 pub mod lighting;
+pub mod lighttracer;
 pub mod path;
 pub mod photon;
 pub mod run;
@@ -62,11 +63,15 @@ pub enum Integrator {
     Direct { max_depth: u32 },
     /// Photon mapping with final gathering and MIS-combined caustics.
     Photon(photon::PhotonSettings),
+    /// Light tracing: light paths connected to the camera (pbrt-v4's
+    /// `lightpath`), the oracle for caustics from delta lights.
+    LightTracer { max_depth: u32 },
 }
 
 impl Integrator {
     /// Names as written in scene files (`Integrator "photon"`).
-    pub const NAMES: &'static [&'static str] = &["path", "direct", "photon"];
+    pub const NAMES: &'static [&'static str] =
+        &["path", "direct", "photon", "lighttracer", "lightpath"];
 
     /// The integrator called `name` with its default settings at `max_depth`
     /// (pbrt-v4's meaning: scattering events after the camera ray; 0 shows
@@ -75,6 +80,7 @@ impl Integrator {
         match name {
             "path" => Some(Integrator::Path { max_depth }),
             "direct" => Some(Integrator::Direct { max_depth }),
+            "lighttracer" | "lightpath" => Some(Integrator::LightTracer { max_depth }),
             "photon" => Some(Integrator::Photon(photon::PhotonSettings {
                 max_depth,
                 ..Default::default()
@@ -88,12 +94,15 @@ impl Integrator {
             Integrator::Path { .. } => "path",
             Integrator::Direct { .. } => "direct",
             Integrator::Photon(_) => "photon",
+            Integrator::LightTracer { .. } => "lighttracer",
         }
     }
 
     pub fn max_depth(&self) -> u32 {
         match self {
-            Integrator::Path { max_depth } | Integrator::Direct { max_depth } => *max_depth,
+            Integrator::Path { max_depth }
+            | Integrator::Direct { max_depth }
+            | Integrator::LightTracer { max_depth } => *max_depth,
             Integrator::Photon(s) => s.max_depth,
         }
     }

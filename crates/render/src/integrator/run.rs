@@ -5,7 +5,7 @@
 
 use super::driver::{Pass, PassReport, SampleCx, Start};
 use super::photon::run::PhotonRun;
-use super::{direct, path, Integrator};
+use super::{direct, lighttracer, path, Integrator};
 use crate::geometry::Ray;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler};
@@ -14,9 +14,21 @@ use std::time::Duration;
 
 /// An integrator prepared for one render of one scene.
 pub enum Run<'a> {
-    Path { scene: &'a Scene, max_depth: u32 },
-    Direct { scene: &'a Scene, max_depth: u32 },
+    Path {
+        scene: &'a Scene,
+        max_depth: u32,
+    },
+    Direct {
+        scene: &'a Scene,
+        max_depth: u32,
+    },
     Photon(Box<PhotonRun<'a>>),
+    /// `scale`: the film's pixels over the rendered (crop) pixels.
+    LightTracer {
+        scene: &'a Scene,
+        max_depth: u32,
+        scale: f32,
+    },
 }
 
 impl<'a> Run<'a> {
@@ -38,6 +50,15 @@ impl<'a> Run<'a> {
                 max_depth: *max_depth,
             },
             Integrator::Photon(s) => Run::Photon(Box::new(PhotonRun::new(scene, s, start, saved))),
+            Integrator::LightTracer { max_depth } => {
+                let (w, h) = scene.camera.resolution;
+                let crop = start.crop.area().max(1) as f64;
+                Run::LightTracer {
+                    scene,
+                    max_depth: *max_depth,
+                    scale: (w as f64 * h as f64 / crop) as f32,
+                }
+            }
         }
     }
 
@@ -66,6 +87,14 @@ impl Pass for Run<'_> {
                 direct::li(scene, ray, sampler, *max_depth, cx.rays)
             }
             Run::Photon(p) => p.li(ray, sampler, cx.rays),
+            Run::LightTracer {
+                scene,
+                max_depth,
+                scale,
+            } => {
+                lighttracer::trace(scene, sampler, *max_depth, *scale, cx);
+                Rgb::BLACK
+            }
         }
     }
 

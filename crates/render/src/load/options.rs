@@ -270,7 +270,7 @@ fn build_integrator(
             } else {
                 let note = match e.ty.as_str() {
                     "volpath" => "volumes are not rendered yet",
-                    "bdpt" | "mlt" | "lightpath" => "it is not implemented",
+                    "bdpt" | "mlt" => "it is not implemented",
                     _ => "it is not a lumis integrator",
                 };
                 w.push(Diagnostic::warning(

@@ -1,0 +1,109 @@
+//! `lighttracer` (light paths connected to the camera, splatted) against
+//! what is known exactly: the furnace's `Le / (1 - a)` with pbrt's
+//! `maxdepth`, and the committed `path` references of the caustic test
+//! scenes' caustic regions. Light tracing's pixels share light paths, so
+//! errors are measured over independent seeds (the spread of their means),
+//! not over pixels. Also: the same bits on any thread count.
+
+mod common;
+
+use common::*;
+use lumis_render::image_io::read_image;
+use lumis_render::load::{load_path, LoadedScene, Overrides};
+
+/// A closed, two-sided emitting diffuse sphere with the camera inside.
+fn furnace(albedo: f32, le: f32, maxdepth: u32) -> String {
+    format!(
+        r#"Integrator "lighttracer" "integer maxdepth" [ {maxdepth} ]
+{}
+LookAt 0.1 0.2 0.3  1 0.5 -0.2  0 1 0
+Camera "perspective" "float fov" [ 80 ]
+WorldBegin
+AreaLightSource "diffuse" "rgb L" [ {le} {le} {le} ] "bool twosided" true
+Material "diffuse" "rgb reflectance" [ {albedo} {albedo} {albedo} ]
+Shape "sphere" "float radius" [ 3 ]
+"#,
+        header(16)
+    )
+}
+
+/// Mean of the whole image (splats included) over the channels.
+fn image_mean(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> f64 {
+    let img = render_loaded(l, spp, seed, threads).film.mean_image();
+    img.iter().map(|&v| v as f64).sum::<f64>() / img.len() as f64
+}
+
+/// Mean and standard error over `seeds` independent renders.
+fn over_seeds(l: &LoadedScene, spp: u32, seeds: std::ops::Range<u64>) -> (f64, f64) {
+    let v: Vec<f64> = seeds.map(|s| image_mean(l, spp, s, 0)).collect();
+    sample_mean_and_se(&v)
+}
+
+fn assert_close(label: &str, (mean, se): (f64, f64), expected: f64, expected_se: f64) {
+    let se = (se * se + expected_se * expected_se).sqrt();
+    let z = (mean - expected) / se;
+    eprintln!("{label}: {mean:.5} ± {se:.5}, expected {expected:.5}, z {z:.2}");
+    // 4.5 sigma: a false alarm about once in 150k runs.
+    assert!(
+        z.abs() < 4.5,
+        "{label}: {mean} is {z:.1} standard errors from {expected}"
+    );
+    assert!(
+        se < 0.01 * expected,
+        "{label}: too noisy to see a 1% bias (se {se})"
+    );
+}
+
+#[test]
+fn furnace_converges_to_le_over_one_minus_albedo_with_pbrts_maxdepth() {
+    // maxdepth 0: the light seen directly; each bounce adds a^k Le.
+    for (d, expected) in [(0u32, 0.5f64), (1, 0.75), (2, 0.875), (200, 1.0)] {
+        let l = load(&furnace(0.5, 0.5, d), &Default::default());
+        assert_close(
+            &format!("maxdepth {d}"),
+            over_seeds(&l, 512, 0..12),
+            expected,
+            0.0,
+        );
+    }
+    let l = load(&furnace(0.8, 0.2, 300), &Default::default());
+    assert_close("albedo 0.8", over_seeds(&l, 512, 0..12), 1.0, 0.0);
+}
+
+/// The caustic regions of the glass sphere over a diffuse and over a rough
+/// aluminium floor (small area light): light paths through the sphere,
+/// connected at the floor, against `path`'s million-sample references.
+#[test]
+fn caustic_regions_agree_with_path() {
+    for name in ["caustic_sphere", "caustic_sphere_glossy"] {
+        let mut ov = Overrides::default();
+        ov.crop_from([0.39, 0.62, 0.41, 0.53], "test")
+            .integrator("lighttracer");
+        let l = load_path(&test_scene(name), &ov).unwrap();
+        let m = read_image(&test_data(&format!("{name}_ref_mean.exr"))).unwrap();
+        let v = read_image(&test_data(&format!("{name}_ref_var.exr"))).unwrap();
+        let n = m.data.len() as f64;
+        let r = m.data.iter().map(|&x| x as f64).sum::<f64>() / n;
+        // The region mean's variance: per-pixel variances of the mean over
+        // the pixels squared (three channels averaged).
+        let r_se = (v.data.iter().map(|&x| x as f64).sum::<f64>() / (n * n / 3.0)).sqrt();
+        assert_close(name, over_seeds(&l, 2048, 0..12), r, r_se);
+    }
+}
+
+#[test]
+fn same_bits_on_any_thread_count() {
+    let l = load_path(&test_scene("caustic_sphere"), &{
+        let mut ov = Overrides::default();
+        ov.resolution(24, 24).integrator("lighttracer");
+        ov
+    })
+    .unwrap();
+    let bits = |threads| -> Vec<u32> {
+        let img = render_loaded(&l, 8, 3, threads).film.mean_image();
+        img.iter().map(|v| v.to_bits()).collect()
+    };
+    let one = bits(1);
+    assert!(one.iter().any(|&b| b != 0), "nothing rendered");
+    assert_eq!(one, bits(2));
+}
