@@ -37,6 +37,11 @@ pub struct CompareArgs {
     /// Restrict to a region, as fractions x0,x1,y0,y1 (like --crop).
     #[arg(long, value_name = "x0,x1,y0,y1", value_parser = parse_crop)]
     pub mask: Option<[f32; 4]>,
+    /// Only pixels where the test image and its eight neighbours are not
+    /// black (a `lighttracer` image: black where only a specular bounce
+    /// shows the camera).
+    #[arg(long)]
+    pub lit: bool,
     /// Write a false-colour per-pixel error map (log scale, viridis, colour bar) to this PNG.
     #[arg(long, value_name = "OUT.png")]
     pub heatmap: Option<PathBuf>,

@@ -29,7 +29,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 
 fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
     use lumis_render::image_io::read_image;
-    use lumis_render::metrics::{compare, PixelError};
+    use lumis_render::metrics::{compare_where, lit_interior, PixelError};
     let kind = PixelError::from_name(&a.heatmap_error).ok_or_else(|| {
         anyhow::anyhow!("unknown --heatmap-error `{}` (rel or abs)", a.heatmap_error)
     })?;
@@ -38,7 +38,8 @@ fn compare_cmd(a: crate::args::CompareArgs) -> Result<ExitCode> {
     let region = a
         .mask
         .map(|m| lumis_render::load::options::crop_bounds((t.width, t.height), m));
-    let m = compare(&t, &r, region).map_err(|e| anyhow::anyhow!("{}: {e}", a.test.display()))?;
+    let m = compare_where(&t, &r, region, |x, y| !a.lit || lit_interior(&t, x, y))
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.test.display()))?;
     outln!("pixels   {}", m.pixels);
     outln!("MSE      {:.6e}", m.mse);
     outln!("RMSE     {:.6e}", m.rmse);

@@ -33,6 +33,28 @@ pub fn compare(
     reference: &RgbImage,
     region: Option<Region>,
 ) -> Result<Metrics, String> {
+    compare_where(test, reference, region, |_, _| true)
+}
+
+/// Whether pixel (x, y) of `img` and its eight neighbours are all non-zero
+/// (in some channel), and none is on the border: where a light tracer's
+/// image is a full estimate (it is black where only a specular bounce
+/// shows the camera, and its box-filtered edges mix both).
+pub fn lit_interior(img: &RgbImage, x: u32, y: u32) -> bool {
+    if x == 0 || y == 0 || x + 1 >= img.width || y + 1 >= img.height {
+        return false;
+    }
+    (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| img.pixel(xx, yy).iter().any(|&v| v != 0.0)))
+}
+
+/// [`compare`] over the pixels of `region` for which `keep(x, y)` holds.
+/// Errors also when it keeps none.
+pub fn compare_where(
+    test: &RgbImage,
+    reference: &RgbImage,
+    region: Option<Region>,
+    keep: impl Fn(u32, u32) -> bool,
+) -> Result<Metrics, String> {
     if (test.width, test.height) != (reference.width, reference.height) {
         return Err(format!(
             "image sizes differ: test {}x{}, reference {}x{}",
@@ -53,8 +75,13 @@ pub fn compare(
     }
     let (mut se, mut rel, mut ae) = (0.0f64, 0.0f64, 0.0f64);
     let (mut mt, mut mr) = ([0.0f64; 3], [0.0f64; 3]);
+    let mut pixels = 0u64;
     for y in r.y0..r.y1 {
         for x in r.x0..r.x1 {
+            if !keep(x, y) {
+                continue;
+            }
+            pixels += 1;
             let (t, f) = (test.pixel(x, y), reference.pixel(x, y));
             for c in 0..3 {
                 let (tv, rv) = (t[c] as f64, f[c] as f64);
@@ -73,7 +100,9 @@ pub fn compare(
             }
         }
     }
-    let pixels = (r.x1 - r.x0) as u64 * (r.y1 - r.y0) as u64;
+    if pixels == 0 {
+        return Err("no pixel to compare".into());
+    }
     let n = pixels as f64 * 3.0;
     Ok(Metrics {
         mse: se / n,
@@ -146,6 +175,24 @@ mod tests {
 
     fn img(v: &[f32]) -> RgbImage {
         RgbImage::new(2, 1, v.to_vec())
+    }
+
+    #[test]
+    fn lit_keeps_interior_pixels_whose_neighbourhood_is_not_black() {
+        // 5x4, one black pixel at (1, 2): of the interior (1..4 x 1..3),
+        // only column 3 is out of its reach.
+        let mut v = vec![1.0f32; 5 * 4 * 3];
+        v[(2 * 5 + 1) * 3..(2 * 5 + 1) * 3 + 3].fill(0.0);
+        let t = RgbImage::new(5, 4, v);
+        let kept: Vec<(u32, u32)> = (0..4)
+            .flat_map(|y| (0..5).map(move |x| (x, y)))
+            .filter(|&(x, y)| lit_interior(&t, x, y))
+            .collect();
+        assert_eq!(kept, vec![(3, 1), (3, 2)]);
+        let r = RgbImage::new(5, 4, vec![0.5; 60]);
+        let m = compare_where(&t, &r, None, |x, y| lit_interior(&t, x, y)).unwrap();
+        assert_eq!((m.pixels, m.ratio()), (2, [2.0; 3]));
+        assert!(compare_where(&t, &r, None, |_, _| false).is_err());
     }
 
     #[test]
