@@ -32,6 +32,9 @@ fn assert_same_bits(a: &Film, b: &Film) {
         );
         assert_eq!(p.m2.map(f64::to_bits), q.m2.map(f64::to_bits), "pixel {i}");
     }
+    let bits = |f: &Film| -> Vec<u64> { f.splats.iter().flatten().map(|v| v.to_bits()).collect() };
+    assert_eq!(bits(a), bits(b), "splats");
+    assert_eq!(a.splat_samples, b.splat_samples);
 }
 
 fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
@@ -68,6 +71,11 @@ fn path_resume_is_bit_identical() {
 #[test]
 fn photon_resume_is_bit_identical() {
     resume_equals_uninterrupted("photon", 4, 1);
+}
+
+#[test]
+fn lighttracer_resume_is_bit_identical() {
+    resume_equals_uninterrupted("lighttracer", 6, 2);
 }
 
 #[test]
