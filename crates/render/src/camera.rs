@@ -90,10 +90,12 @@ impl Camera {
 
     /// Importance and raster position of the ray leaving the lens at
     /// `o_cam` (camera space, on the lens plane) in world direction `d`;
-    /// `None` if it misses the film. `W_e = 1 / (A lens_area cos^4)`, `A`
+    /// `None` if it misses the film grown by `margin` pixels on each side
+    /// (the pixel filter's radius: a point just outside the film still
+    /// counts in its border pixels). `W_e = 1 / (A lens_area cos^4)`, `A`
     /// the film's area on the plane `z = 1`, so that the importance of the
     /// whole film integrates to one (pbrt-v4's `We`).
-    pub fn importance(&self, o_cam: Vec3, d: Vec3) -> Option<(f32, Vec2)> {
+    pub fn importance(&self, o_cam: Vec3, d: Vec3, margin: Vec2) -> Option<(f32, Vec2)> {
         let d_cam = self
             .world_from_camera
             .inverse()
@@ -116,7 +118,8 @@ impl Camera {
         let [x0, x1, y0, y1] = self.screen;
         let (w, h) = (self.resolution.0 as f32, self.resolution.1 as f32);
         let p = Vec2::new((sx - x0) / (x1 - x0) * w, (y1 - sy) / (y1 - y0) * h);
-        if !(p.x >= 0.0 && p.x < w && p.y >= 0.0 && p.y < h) {
+        let inside = |v: f32, size: f32, m: f32| v > -m && v < size + m;
+        if !(inside(p.x, w, margin.x) && inside(p.y, h, margin.y)) {
             return None;
         }
         let area = (x1 - x0) * (y1 - y0) * self.tan_half_fov * self.tan_half_fov;
@@ -126,8 +129,8 @@ impl Camera {
 
     /// A lens point seen from `p_ref` (lens sample `u_lens`), with its
     /// density per solid angle there and the importance of the ray from it
-    /// to `p_ref`; `None` if that ray misses the film.
-    pub fn sample_wi(&self, p_ref: Vec3, u_lens: Vec2) -> Option<CameraWi> {
+    /// to `p_ref`; `None` if that ray misses the film grown by `margin`.
+    pub fn sample_wi(&self, p_ref: Vec3, u_lens: Vec2, margin: Vec2) -> Option<CameraWi> {
         let lens = self.lens_radius * square_to_disk_concentric(u_lens);
         let o_cam = Vec3::new(lens.x, lens.y, 0.0);
         let p_lens = self.world_from_camera.point(o_cam);
@@ -139,7 +142,7 @@ impl Camera {
         let wi = to_lens / dist2.sqrt();
         let forward = self.world_from_camera.vector(Vec3::Z).normalize_or_zero();
         let cos_lens = forward.dot(wi).abs();
-        let (we, p_raster) = self.importance(o_cam, -wi)?;
+        let (we, p_raster) = self.importance(o_cam, -wi, margin)?;
         Some(CameraWi {
             wi,
             p_lens,
@@ -186,7 +189,7 @@ mod tests {
                 (Vec2::new(20.0, 15.0), Vec2::new(0.5, 0.5)),
             ] {
                 let r = c.generate_ray(p, u);
-                let s = c.sample_wi(r.at(2.7), u).expect("on the film");
+                let s = c.sample_wi(r.at(2.7), u, Vec2::ZERO).expect("on the film");
                 assert!(
                     (s.p_raster - p).length() < 1e-3,
                     "{lens}: {p} vs {}",
@@ -197,7 +200,7 @@ mod tests {
             }
             // Behind the camera: no importance.
             let back = c.world_from_camera.point(Vec3::new(0.0, 0.0, -1.0));
-            assert!(c.sample_wi(back, Vec2::splat(0.5)).is_none());
+            assert!(c.sample_wi(back, Vec2::splat(0.5), Vec2::ZERO).is_none());
         }
     }
 
@@ -215,7 +218,7 @@ mod tests {
         for _ in 0..n {
             let p = Vec2::new(rng.next_f32() * 64.0, rng.next_f32() * 48.0);
             let r = c.generate_ray(p, Vec2::ZERO);
-            let (we, _) = c.importance(Vec3::ZERO, r.d).unwrap();
+            let (we, _) = c.importance(Vec3::ZERO, r.d, Vec2::ZERO).unwrap();
             let cos = r.d.z;
             sum += (we * cos * cos.powi(3) * area) as f64;
         }

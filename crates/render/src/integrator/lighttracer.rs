@@ -38,7 +38,10 @@ pub fn trace(scene: &Scene, sampler: &mut Sampler, max_depth: u32, scale: f32, c
     // two-sided light.
     if !le.delta_pos && le.n != Vec3::ZERO {
         let p = le.ray.o;
-        if let Some(c) = scene.camera.sample_wi(p, sampler.get_2d()) {
+        if let Some(c) = scene
+            .camera
+            .sample_wi(p, sampler.get_2d(), cx.filter.radius)
+        {
             let cos = le.n.dot(c.wi);
             if cos > 0.0 && light.emits_toward(le.n, c.wi) {
                 let sides = if light.emits_toward(le.n, -c.wi) {
@@ -65,7 +68,10 @@ pub fn trace(scene: &Scene, sampler: &mut Sampler, max_depth: u32, scale: f32, c
         let bsdf = scene.bsdf(&hit, wo);
         let (p, ns) = (hit.geom.p, hit.geom.ns);
         if !bsdf.is_delta() {
-            if let Some(c) = scene.camera.sample_wi(p, sampler.get_2d()) {
+            if let Some(c) = scene
+                .camera
+                .sample_wi(p, sampler.get_2d(), cx.filter.radius)
+            {
                 let f = bsdf.eval(wo, c.wi, TransportMode::Importance);
                 if !f.is_black() {
                     let l = beta * f * (c.wi.dot(ns).abs() * c.we / c.pdf);
