@@ -163,6 +163,42 @@ fn cornell_box_agrees_with_path() {
     assert!((r - 1.0).abs() < 0.015, "border frame {r:.4}");
 }
 
+/// A white diffuse sphere in a uniform environment of radiance 1 (the
+/// white furnace) looks exactly like the environment: radiance 1 over the
+/// sphere. The light tracer sees the environment's light on it (light
+/// paths from an infinite light), not the environment itself, so only the
+/// sphere's pixels away from its outline are compared.
+#[test]
+fn white_furnace_sphere_is_one_under_an_environment_light() {
+    let l = load(
+        &white_furnace(
+            "lighttracer",
+            r#"Material "diffuse" "rgb reflectance" [ 1 1 1 ]"#,
+        ),
+        &Default::default(),
+    );
+    let means: Vec<f64> = (0..8)
+        .map(|seed| {
+            let img = render_loaded(&l, 256, seed, 0).film.mean_image();
+            let px = |x: usize, y: usize| img[3 * (y * 24 + x)] as f64;
+            let inside: Vec<f64> = (1..23)
+                .flat_map(|y| (1..23).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    (y - 1..=y + 1).all(|yy| (x - 1..=x + 1).all(|xx| px(xx, yy) > 0.0))
+                })
+                .map(|(x, y)| px(x, y))
+                .collect();
+            assert!(
+                inside.len() > 20,
+                "the sphere covers {} pixels",
+                inside.len()
+            );
+            inside.iter().sum::<f64>() / inside.len() as f64
+        })
+        .collect();
+    assert_close("white furnace", sample_mean_and_se(&means), 1.0, 0.0);
+}
+
 #[test]
 fn same_bits_on_any_thread_count() {
     let l = load_path(&test_scene("caustic_sphere"), &{
