@@ -10,17 +10,15 @@ use lumis_math::{Rgb, Transform, Vec3};
 use lumis_render::accel::bench::{bumpy_sphere, MeshAccel};
 use lumis_render::camera::Camera;
 use lumis_render::film::{Filter, PixelBounds};
-use lumis_render::geometry::{Prim, TriangleMesh};
+use lumis_render::geometry::TriangleMesh;
 use lumis_render::integrator::photon::map::PhotonMap;
 use lumis_render::integrator::photon::photon::Photon;
 use lumis_render::integrator::{render, Integrator, RenderOutcome, RenderSettings};
 use lumis_render::light::{Light, UniformInfiniteLight};
 use lumis_render::load::{load_text, Overrides, DEFAULT_SCENE};
-use lumis_render::material::{DiffuseMaterial, MaterialKind};
-use lumis_render::scene::{PrimInfo, Scene, Shapes, NO_LIGHT};
+use lumis_render::scene::Scene;
 use lumis_render::study::fit::log_log;
 use lumis_render::study::plot::{svg_xy, Series, COLOURS};
-use lumis_render::texture::TexRgb;
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
@@ -47,17 +45,6 @@ pub fn run(a: &BenchArgs) -> Result<()> {
 /// A diffuse bumpy sphere of `n` triangles under a uniform sky, seen from 3
 /// units away: a scene whose cost is the mesh.
 fn mesh_scene(mesh: TriangleMesh, res: u32) -> Scene {
-    let prims = (0..mesh.triangle_count() as u32)
-        .map(|tri| PrimInfo {
-            prim: Prim::Triangle { mesh: 0, tri },
-            material: 0,
-            light: NO_LIGHT,
-        })
-        .collect();
-    let shapes = Shapes {
-        meshes: vec![mesh],
-        ..Default::default()
-    };
     let sky = Light::Infinite(UniformInfiniteLight {
         l: Rgb::splat(1.0),
         scene_center: Vec3::ZERO,
@@ -67,13 +54,8 @@ fn mesh_scene(mesh: TriangleMesh, res: u32) -> Scene {
         0.0, 0.0, -3.0,
     )))
     .expect("a translation inverts");
-    Scene::new(
-        shapes,
-        prims,
-        vec![MaterialKind::Diffuse(DiffuseMaterial {
-            reflectance: TexRgb::Const(Rgb::splat(0.5)),
-        })
-        .into()],
+    Scene::grey_mesh(
+        mesh,
         vec![sky],
         Camera::perspective(at, (res, res), 45.0, 0.0, 1.0),
     )

@@ -6,13 +6,11 @@
 //! Set `LUMIS_BENCH_TRIS` to change the mesh size (default 1M).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use lumis_math::{Rgb, Transform};
+use lumis_math::Transform;
 use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays};
 use lumis_render::camera::Camera;
-use lumis_render::geometry::{Prim, Ray};
-use lumis_render::material::{DiffuseMaterial, MaterialKind};
-use lumis_render::scene::{PrimInfo, Scene, Shapes, NO_LIGHT};
-use lumis_render::texture::TexRgb;
+use lumis_render::geometry::Ray;
+use lumis_render::scene::Scene;
 
 const N_RAYS: usize = 100_000;
 
@@ -23,24 +21,8 @@ fn bench(c: &mut Criterion) {
         .unwrap_or(1_000_000);
     let mesh = bumpy_sphere(n, 7);
     let bounds = mesh_bounds(&mesh);
-    let prims = (0..mesh.triangle_count() as u32)
-        .map(|tri| PrimInfo {
-            prim: Prim::Triangle { mesh: 0, tri },
-            material: 0,
-            light: NO_LIGHT,
-        })
-        .collect();
-    let shapes = Shapes {
-        meshes: vec![mesh],
-        ..Default::default()
-    };
-    let scene = Scene::new(
-        shapes,
-        prims,
-        vec![MaterialKind::Diffuse(DiffuseMaterial {
-            reflectance: TexRgb::Const(Rgb::splat(0.5)),
-        })
-        .into()],
+    let scene = Scene::grey_mesh(
+        mesh,
         vec![],
         Camera::perspective(Transform::IDENTITY, (4, 4), 60.0, 0.0, 1.0),
     );

@@ -9,21 +9,6 @@ mod common;
 
 use common::*;
 
-fn sphere_scene(albedo: f32, le: f32, integrator: &str, maxdepth: u32) -> String {
-    format!(
-        r#"Integrator "{integrator}" "integer maxdepth" [ {maxdepth} ]
-{}
-LookAt 0.1 0.2 0.3  1 0.5 -0.2  0 1 0
-Camera "perspective" "float fov" [ 80 ]
-WorldBegin
-AreaLightSource "diffuse" "rgb L" [ {le} {le} {le} ] "bool twosided" true
-Material "diffuse" "rgb reflectance" [ {albedo} {albedo} {albedo} ]
-Shape "sphere" "float radius" [ 3 ]
-"#,
-        header(24)
-    )
-}
-
 fn check(text: &str, spp: u32, expected: f64, label: &str) {
     let l = load(text, &Default::default());
     let out = render_loaded(&l, spp, 7, 0);
@@ -47,8 +32,18 @@ fn check(text: &str, spp: u32, expected: f64, label: &str) {
 
 #[test]
 fn path_converges_to_le_over_one_minus_albedo() {
-    check(&sphere_scene(0.5, 0.5, "path", 100), 64, 1.0, "path a=0.5");
-    check(&sphere_scene(0.8, 0.2, "path", 200), 128, 1.0, "path a=0.8");
+    check(
+        &emitting_furnace(0.5, 0.5, "path", 100),
+        64,
+        1.0,
+        "path a=0.5",
+    );
+    check(
+        &emitting_furnace(0.8, 0.2, "path", 200),
+        128,
+        1.0,
+        "path a=0.8",
+    );
 }
 
 #[test]
@@ -56,7 +51,7 @@ fn path_respects_maxdepth_like_pbrt() {
     // maxdepth 0: emission only; 1: plus one bounce (direct lighting); 2: two bounces.
     for (d, expected) in [(0u32, 0.5f64), (1, 0.75), (2, 0.875)] {
         check(
-            &sphere_scene(0.5, 0.5, "path", d),
+            &emitting_furnace(0.5, 0.5, "path", d),
             32,
             expected,
             &format!("path maxdepth {d}"),
@@ -66,7 +61,7 @@ fn path_respects_maxdepth_like_pbrt() {
 
 #[test]
 fn direct_gives_emission_plus_one_bounce() {
-    check(&sphere_scene(0.5, 0.5, "direct", 5), 32, 0.75, "direct");
+    check(&emitting_furnace(0.5, 0.5, "direct", 5), 32, 0.75, "direct");
 }
 
 /// A lossless closed object in a uniform environment of radiance 1 looks
@@ -127,7 +122,7 @@ fn white_coated_diffuse_sphere_in_white_furnace() {
 /// furnace tests in `photon_progressive.rs`.)
 #[test]
 fn photon_converges_to_le_over_one_minus_albedo() {
-    let text = sphere_scene(0.5, 0.5, "photon", 100)
+    let text = emitting_furnace(0.5, 0.5, "photon", 100)
         .replace("[ 100 ]", "[ 100 ] \"bool progressive\" false");
     let l = load(&text, &Default::default());
     let out = render_loaded(&l, 16, 7, 0);

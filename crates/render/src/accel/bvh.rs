@@ -196,7 +196,7 @@ impl Bvh {
         if refs.is_empty() {
             return Bvh::default();
         }
-        let root = build_rec(&mut refs, 0, 0, block);
+        let root = build_rec(&mut refs, 0, Level { depth: 0, block });
         let mut nodes = Vec::with_capacity(refs.len() / 4 + 1);
         flatten(&[&root], &mut nodes);
         // Copy into a huge-page backed array of the exact size.
@@ -496,7 +496,15 @@ fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
     (b, c)
 }
 
-fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32, block: usize) -> BuildNode {
+/// Where a build step is: its depth, and the SAH's block size.
+#[derive(Clone, Copy)]
+struct Level {
+    depth: u32,
+    block: usize,
+}
+
+fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
+    let Level { depth, block } = at;
     let blocks = |n: u32| n.div_ceil(block as u32) as f32;
     let (bounds, cb) = bounds_of(refs);
     let n = refs.len();
@@ -521,14 +529,14 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32, block: usize) -> Bu
         if n <= MAX_LEAF {
             return leaf;
         }
-        return split_at(refs, start, n / 2, bounds, depth, block);
+        return split_at(refs, start, n / 2, bounds, at);
     }
     if ext[axis] <= 0.0 {
         // All centroids coincide: split in the middle by count if too many for a leaf.
         if n <= MAX_LEAF {
             return leaf;
         }
-        return split_at(refs, start, n / 2, bounds, depth, block);
+        return split_at(refs, start, n / 2, bounds, at);
     }
     // Binned SAH over all three axes.
     let mut best = (f32::INFINITY, 0usize, 0usize); // cost, axis, split bin
@@ -573,7 +581,7 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32, block: usize) -> Bu
         if n <= MAX_LEAF {
             return leaf;
         }
-        return split_at(refs, start, n / 2, bounds, depth, block);
+        return split_at(refs, start, n / 2, bounds, at);
     }
     let (ax, bin) = (best.1, best.2);
     let scale = BINS as f32 / ext[ax];
@@ -581,19 +589,12 @@ fn build_rec(refs: &mut [PrimRef], start: usize, depth: u32, block: usize) -> Bu
         (((r.centroid[ax] - cb.min[ax]) * scale) as usize).min(BINS - 1) <= bin
     });
     if mid == 0 || mid == n {
-        return split_at(refs, start, n / 2, bounds, depth, block);
+        return split_at(refs, start, n / 2, bounds, at);
     }
-    children(refs, start, mid, bounds, depth, block)
+    children(refs, start, mid, bounds, at)
 }
 
-fn split_at(
-    refs: &mut [PrimRef],
-    start: usize,
-    mid: usize,
-    bounds: Aabb,
-    depth: u32,
-    block: usize,
-) -> BuildNode {
+fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Level) -> BuildNode {
     let ext = bounds.extent();
     let axis = if ext.x > ext.y && ext.x > ext.z {
         0
@@ -603,29 +604,23 @@ fn split_at(
         2
     };
     refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-    children(refs, start, mid, bounds, depth, block)
+    children(refs, start, mid, bounds, at)
 }
 
-fn children(
-    refs: &mut [PrimRef],
-    start: usize,
-    mid: usize,
-    bounds: Aabb,
-    depth: u32,
-    block: usize,
-) -> BuildNode {
+fn children(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Level) -> BuildNode {
+    let next = Level {
+        depth: at.depth + 1,
+        ..at
+    };
     let big = refs.len() > PARALLEL_THRESHOLD;
     let (l, r) = refs.split_at_mut(mid);
     let (a, b) = if big {
         rayon::join(
-            || build_rec(l, start, depth + 1, block),
-            || build_rec(r, start + mid, depth + 1, block),
+            || build_rec(l, start, next),
+            || build_rec(r, start + mid, next),
         )
     } else {
-        (
-            build_rec(l, start, depth + 1, block),
-            build_rec(r, start + mid, depth + 1, block),
-        )
+        (build_rec(l, start, next), build_rec(r, start + mid, next))
     };
     BuildNode::Interior {
         bounds,

@@ -47,6 +47,30 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// One triangle mesh of grey diffuse (reflectance 0.5) under `lights`:
+    /// the scene of the benchmarks that measure what a mesh costs.
+    pub fn grey_mesh(
+        mesh: crate::geometry::TriangleMesh,
+        lights: Vec<Light>,
+        camera: Camera,
+    ) -> Scene {
+        let prims = (0..mesh.triangle_count() as u32)
+            .map(|tri| PrimInfo {
+                prim: crate::geometry::Prim::Triangle { mesh: 0, tri },
+                material: 0,
+                light: NO_LIGHT,
+            })
+            .collect();
+        let shapes = Shapes {
+            meshes: vec![mesh],
+            ..Default::default()
+        };
+        let grey = crate::material::MaterialKind::Diffuse(crate::material::DiffuseMaterial {
+            reflectance: crate::texture::TexRgb::Const(lumis_math::Rgb::splat(0.5)),
+        });
+        Scene::new(shapes, prims, vec![grey.into()], lights, camera)
+    }
+
     /// Builds the acceleration structure and light tables (no instances).
     pub fn new(
         shapes: Shapes,

@@ -54,6 +54,24 @@ Film "rgb" "integer xresolution" [ {res} ] "integer yresolution" [ {res} ]"#
     )
 }
 
+/// Inside a closed, two-sided emitting diffuse sphere (radius 3, albedo
+/// `albedo`, `Le` = `le`) at 24x24: radiance `le sum_{k<=d} albedo^k` with
+/// `d` = `maxdepth` scattering events, `le / (1 - albedo)` without a limit.
+pub fn emitting_furnace(albedo: f32, le: f32, integrator: &str, maxdepth: u32) -> String {
+    format!(
+        r#"Integrator "{integrator}" "integer maxdepth" [ {maxdepth} ]
+{}
+LookAt 0.1 0.2 0.3  1 0.5 -0.2  0 1 0
+Camera "perspective" "float fov" [ 80 ]
+WorldBegin
+AreaLightSource "diffuse" "rgb L" [ {le} {le} {le} ] "bool twosided" true
+Material "diffuse" "rgb reflectance" [ {albedo} {albedo} {albedo} ]
+Shape "sphere" "float radius" [ 3 ]
+"#,
+        header(24)
+    )
+}
+
 /// A white furnace: a unit sphere of `material` in a uniform environment of
 /// radiance 1, rendered by `integrator` (maxdepth 300) at 24x24. A closed
 /// lossless object looks exactly like the environment: radiance 1 everywhere.
