@@ -3,7 +3,7 @@
 //!
 //! The top-level modules are layered, each using only the ones below it
 //! (`tests/layers` checks this and that no two modules import each other):
-//! `geometry`, `bsdf`, `film` at the bottom; then `camera`, `image_io`,
+//! `geometry`, `bsdf`, `film`, `media` at the bottom; then `camera`, `image_io`,
 //! `metrics`; `texture`; `material`; `light`; `accel`; `scene`;
 //! `integrator`; `checkpoint`; and `load`, which builds everything.
 
@@ -18,6 +18,7 @@ pub mod integrator;
 pub mod light;
 pub mod load;
 pub mod material;
+pub mod media;
 pub mod metrics;
 pub mod scene;
 pub mod session;

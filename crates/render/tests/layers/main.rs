@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 /// modules of its own layer or the layers below, never above; inside one
 /// layer the cycle check keeps the imports one-way.
 const RENDER_LAYERS: &[&[&str]] = &[
-    &["geometry", "bsdf", "film"],
+    &["geometry", "bsdf", "film", "media"],
     &["camera", "image_io", "metrics"],
     &["texture"],
     &["material"],
