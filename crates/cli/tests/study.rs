@@ -59,6 +59,7 @@ name = "glass"
 file = "glass.pbrt"
 reference = "glass-ref.exr"
 mask = [0.25, 0.75, 0.5, 1.0]
+lit_only = true
 [[setting]]
 name = "path"
 flags = ["--integrator", "path"]

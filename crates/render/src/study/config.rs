@@ -50,6 +50,11 @@ pub struct SceneCfg {
     pub reference: PathBuf,
     /// Metrics region x0,x1,y0,y1 (fractions, as --mask); heatmaps cover the whole image.
     pub mask: Option<[f32; 4]>,
+    /// Metrics only over the pixels the reference covers: not black, nor
+    /// next to black (as `lumis compare --lit`). For a `lighttracer`
+    /// reference, black where only a specular bounce shows the camera.
+    #[serde(default)]
+    pub lit_only: bool,
     /// PNG exposure in stops (default: the reference's 98th percentile maps to 1).
     pub exposure: Option<f32>,
     /// Extra render flags for every run of this scene.

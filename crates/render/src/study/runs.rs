@@ -11,7 +11,7 @@ use crate::image_io::{read_image, write_image, RgbImage};
 use crate::integrator::RenderHooks;
 use crate::load::options::crop_bounds;
 use crate::metrics::heatmap::write_heatmap;
-use crate::metrics::{compare, Metrics, PixelError};
+use crate::metrics::{compare_where, lit_interior, Metrics, PixelError};
 use crate::session::Session;
 use std::path::{Path, PathBuf};
 
@@ -45,7 +45,11 @@ fn measure(
     f: &Files,
 ) -> Result<Metrics> {
     let region = scene.mask.map(|m| crop_bounds((img.width, img.height), m));
-    let m = compare(img, reference, region).with_context(|| "against the reference".into())?;
+    let lit = scene.lit_only;
+    let m = compare_where(img, reference, region, |x, y| {
+        !lit || lit_interior(reference, x, y)
+    })
+    .with_context(|| "against the reference".into())?;
     write_image(&f.png, img, info.exposure)?;
     let kind = PixelError::from_name(&c.heatmap).expect("checked");
     let range = (c.heatmap_range[0], c.heatmap_range[1]);
