@@ -72,16 +72,9 @@ fn furnace_converges_to_le_over_one_minus_albedo_with_pbrts_maxdepth() {
 fn caustic_regions_agree_with_path() {
     for name in ["caustic_sphere", "caustic_sphere_glossy"] {
         let mut ov = Overrides::default();
-        ov.crop_from([0.39, 0.62, 0.41, 0.53], "test")
-            .integrator("lighttracer");
+        ov.crop_from(CAUSTIC_CROP, "test").integrator("lighttracer");
         let l = load_path(&test_scene(name), &ov).unwrap();
-        let m = read_image(&test_data(&format!("{name}_ref_mean.exr"))).unwrap();
-        let v = read_image(&test_data(&format!("{name}_ref_var.exr"))).unwrap();
-        let n = m.data.len() as f64;
-        let r = m.data.iter().map(|&x| x as f64).sum::<f64>() / n;
-        // The region mean's variance: per-pixel variances of the mean over
-        // the pixels squared (three channels averaged).
-        let r_se = (v.data.iter().map(|&x| x as f64).sum::<f64>() / (n * n / 3.0)).sqrt();
+        let (r, r_se) = caustic_reference(name);
         assert_close(name, over_seeds(&l, 2048, 0..12), r, r_se);
     }
 }

@@ -15,15 +15,13 @@ use lumis_render::film::Film;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
 use lumis_render::load::{load_path, Overrides};
 
-/// The caustic region of the 64x64 image (fractions x0, x1, y0, y1).
-const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
 const REF_SPP: u32 = 1_048_576;
 
 /// The single photon map (these tests measure its estimates; the
 /// progressive mode's are in `photon_progressive.rs`).
 fn ov(integrator: &str) -> Overrides {
     let mut o = Overrides::default();
-    o.crop_from(CROP, "test").integrator(integrator);
+    o.crop_from(CAUSTIC_CROP, "test").integrator(integrator);
     if integrator == "photon" {
         o.integrator_param("bool progressive", "false");
     }
@@ -54,16 +52,6 @@ fn make_references() {
     }
 }
 
-fn reference(name: &str) -> (f64, f64) {
-    let m = read_image(&test_data(&format!("{name}_ref_mean.exr"))).expect("committed reference");
-    let v = read_image(&test_data(&format!("{name}_ref_var.exr")))
-        .expect("committed reference variance");
-    let n = (m.width * m.height) as f64;
-    let mean = m.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n);
-    let var = v.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n * n);
-    (mean, var.sqrt())
-}
-
 fn photon_region(name: &str, mode: &str, caustic_photons: u64, spp: u32) -> (f64, f64) {
     let mut o = ov("photon");
     o.integrator_param("string caustics", &format!("\"{mode}\""));
@@ -73,7 +61,7 @@ fn photon_region(name: &str, mode: &str, caustic_photons: u64, spp: u32) -> (f64
 }
 
 fn check_scene(name: &str, spp: u32) {
-    let (r, r_se) = reference(name);
+    let (r, r_se) = caustic_reference(name);
     eprintln!("{name}: path reference {r:.4} ± {r_se:.4}");
     let mut means = Vec::new();
     for mode in ["mis", "photons", "gather"] {
@@ -142,7 +130,7 @@ fn glossy_floor_caustic_matches_path() {
 #[test]
 fn aimed_caustic_photons_match_path() {
     let name = "caustic_sphere";
-    let (r, r_se) = reference(name);
+    let (r, r_se) = caustic_reference(name);
     let mut stored = Vec::new();
     for aim in [false, true] {
         for mode in ["photons", "mis"] {

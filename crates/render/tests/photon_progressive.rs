@@ -78,9 +78,6 @@ fn progressive_is_independent_of_threads_and_resumes_bit_identically() {
     }
 }
 
-/// The caustic region of the 64x64 test scenes, as `photon_consistency.rs`.
-const CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
-
 /// Per-pixel squared error against the committed `path` reference, less the
 /// reference's own variance, and the region mean's relative error.
 fn errors(name: &str, film: &Film) -> (f64, f64) {
@@ -113,7 +110,7 @@ fn caustic_errors(
 ) -> (f64, f64) {
     let name = "caustic_sphere";
     let mut o = Overrides::default();
-    o.crop_from(CROP, "test").integrator("photon");
+    o.crop_from(CAUSTIC_CROP, "test").integrator("photon");
     o.integrator_param("string caustics", &format!("\"{mode}\""))
         .integrator_param("integer causticphotons", &photons.to_string())
         .integrator_param("integer photons", "20000")

@@ -30,24 +30,18 @@ impl PrimBvh {
     pub fn build(shapes: &Shapes, prims: Vec<PrimInfo>) -> PrimBvh {
         let boxes: Vec<Aabb> = prims.iter().map(|p| shapes.bounds(p.prim)).collect();
         let mut bvh = Bvh::build_aligned(&boxes, 4);
-        let leaf_order: Vec<u32> = bvh
+        // Each lane's id: its primitive's index in the leaf-ordered `prims`.
+        let mut next = 0u32;
+        let packets = TriPackets::build(&bvh.order, |i| {
+            next += 1;
+            (next - 1, shapes.triangle_vertices(prims[i as usize].prim))
+        });
+        let prims = bvh
             .order
             .iter()
-            .copied()
-            .filter(|&i| i != PADDING)
+            .filter(|&&i| i != PADDING)
+            .map(|&i| prims[i as usize])
             .collect();
-        // Index into the leaf-ordered `prims` of each original primitive.
-        let mut dense = vec![0u32; prims.len()];
-        for (k, &i) in leaf_order.iter().enumerate() {
-            dense[i as usize] = k as u32;
-        }
-        let packets = TriPackets::build(&bvh.order, |i| {
-            (
-                dense[i as usize],
-                shapes.triangle_vertices(prims[i as usize].prim),
-            )
-        });
-        let prims = leaf_order.iter().map(|&i| prims[i as usize]).collect();
         bvh.order = Vec::new();
         PrimBvh {
             prims,

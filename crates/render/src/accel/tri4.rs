@@ -120,8 +120,11 @@ pub struct TriPackets {
 impl TriPackets {
     /// From the aligned BVH's `order` (a multiple of four long): `slot(i)`
     /// gives the caller's id of primitive `i` and its vertices if it is a
-    /// triangle.
-    pub fn build(order: &[u32], slot: impl Fn(u32) -> (u32, Option<[Vec3; 3]>)) -> TriPackets {
+    /// triangle; it is called for the primitives in `order`'s order.
+    pub fn build(
+        order: &[u32],
+        mut slot: impl FnMut(u32) -> (u32, Option<[Vec3; 3]>),
+    ) -> TriPackets {
         debug_assert!(order.len().is_multiple_of(4));
         let mut packets = huge_vec(order.len() / 4);
         packets.extend(order.chunks(4).map(|lanes| {

@@ -16,6 +16,7 @@
 use super::driver::SampleCx;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::{spawn_ray, spawn_ray_to};
+use crate::light::Light;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler, Vec3};
 
@@ -31,24 +32,19 @@ pub fn trace(scene: &Scene, sampler: &mut Sampler, max_depth: u32, scale: f32, c
     let Some(le) = light.sample_le(&scene.shapes, u1, u2) else {
         return;
     };
-    // The light's own point seen by the camera (an area light's surface).
-    // The emission's origin is offset to the side it leaves from (a
-    // two-sided light picks one side, each with probability 1/2), so the
-    // camera is connected on that side only, twice as strongly for a
-    // two-sided light.
-    if !le.delta_pos && le.n != Vec3::ZERO {
+    // An area light's own point seen by the camera. The emission's origin
+    // is offset to the side it leaves from (a two-sided light picks one
+    // side, each with probability 1/2), so the camera is connected on that
+    // side only, twice as strongly for a two-sided light.
+    if let Light::Area(area) = light {
         let p = le.ray.o;
         if let Some(c) = scene
             .camera
             .sample_wi(p, sampler.get_2d(), cx.filter.radius)
         {
             let cos = le.n.dot(c.wi);
-            if cos > 0.0 && light.emits_toward(le.n, c.wi) {
-                let sides = if light.emits_toward(le.n, -c.wi) {
-                    2.0
-                } else {
-                    1.0
-                };
+            if cos > 0.0 {
+                let sides = if area.two_sided { 2.0 } else { 1.0 };
                 let l = le.le * (sides * c.we * cos / (pmf * le.pdf_pos * c.pdf));
                 connect(scene, p, le.n, &c, l * scale, cx);
             }

@@ -204,15 +204,6 @@ impl Light {
         }
     }
 
-    /// Whether an area light emits from a point with normal `n` towards
-    /// `w` (two-sided lights both ways); false for the other lights.
-    pub fn emits_toward(&self, n: Vec3, w: Vec3) -> bool {
-        match self {
-            Light::Area(l) => l.two_sided || n.dot(w) > 0.0,
-            _ => false,
-        }
-    }
-
     /// Radiance leaving an area light at a point with normal `n` and surface
     /// parameters `uv` (textured emitters) in direction `w`.
     pub fn l(&self, n: Vec3, uv: Vec2, w: Vec3) -> Rgb {

@@ -210,3 +210,21 @@ pub fn test_data(name: &str) -> PathBuf {
         .join("tests/data")
         .join(name)
 }
+
+/// The caustic region of the 64x64 caustic test scenes (`caustic_sphere`,
+/// `caustic_sphere_glossy`), as fractions x0, x1, y0, y1.
+pub const CAUSTIC_CROP: [f32; 4] = [0.39, 0.62, 0.41, 0.53];
+
+/// The committed `path` reference of a caustic test scene's region
+/// (`tests/data/<name>_ref_{mean,var}.exr`): the region's mean over pixels
+/// and channels, and its standard error.
+pub fn caustic_reference(name: &str) -> (f64, f64) {
+    let m = lumis_render::image_io::read_image(&test_data(&format!("{name}_ref_mean.exr")))
+        .expect("committed reference");
+    let v = lumis_render::image_io::read_image(&test_data(&format!("{name}_ref_var.exr")))
+        .expect("committed reference variance");
+    let n = (m.width * m.height) as f64;
+    let mean = m.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n);
+    let var = v.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n * n);
+    (mean, var.sqrt())
+}
