@@ -100,7 +100,7 @@ pub struct RenderArgs {
     /// Random seed.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Integrator: path, direct, photon or lighttracer (overrides the scene's).
+    /// Integrator: path, direct, photon, lighttracer or bdpt (overrides the scene's).
     #[arg(long)]
     pub integrator: Option<String>,
     /// Maximum path depth (overrides the scene's maxdepth).

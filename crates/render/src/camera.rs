@@ -127,6 +127,20 @@ impl Camera {
         Some((1.0 / (area * self.lens_area() * cos2 * cos2), p))
     }
 
+    /// Density per unit solid angle with which camera rays leaving the
+    /// lens point `p_lens` (world space) take world direction `d`: pbrt-v4's
+    /// `PDF_We` direction part, `1 / (A cos^3)` over the film grown by
+    /// `margin` pixels, 0 elsewhere (the lens point's own density is
+    /// `1 / lens_area`).
+    pub fn pdf_dir(&self, p_lens: Vec3, d: Vec3, margin: Vec2) -> f32 {
+        let o_cam = self.world_from_camera.inverse().point(p_lens);
+        let Some((we, _)) = self.importance(o_cam, d, margin) else {
+            return 0.0;
+        };
+        let forward = self.world_from_camera.vector(Vec3::Z).normalize_or_zero();
+        we * self.lens_area() * forward.dot(d.normalize_or_zero())
+    }
+
     /// A lens point seen from `p_ref` (lens sample `u_lens`), with its
     /// density per solid angle there and the importance of the ray from it
     /// to `p_ref`; `None` if that ray misses the film grown by `margin`.

@@ -34,7 +34,7 @@ fn sppm_scenes_render_with_photon() {
 
 #[test]
 fn other_pbrt_integrators_fall_back_to_path() {
-    for ty in ["bdpt", "mlt", "volpath"] {
+    for ty in ["mlt", "volpath"] {
         let l = load(
             &format!(r#"Integrator "{ty}" "integer maxdepth" 4"#),
             &Overrides::default(),
@@ -44,6 +44,32 @@ fn other_pbrt_integrators_fall_back_to_path() {
         assert_eq!(l.warnings.len(), 1, "{ty}: {:?}", l.warnings);
         assert!(l.warnings[0].message.contains("using `path`"));
     }
+}
+
+#[test]
+fn pbrt_bdpt_is_bdpt() {
+    let l = load(
+        r#"Integrator "bdpt" "integer maxdepth" 4 "bool regularize" false"#,
+        &Overrides::default(),
+    );
+    assert_eq!(
+        l.options.integrator,
+        Integrator::Bdpt(lumis_render::integrator::bdpt::BdptSettings::new(4))
+    );
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+}
+
+/// `strategy` must name one (s, t): two integers, t at least 1.
+#[test]
+fn bdpt_strategy_out_of_range_is_a_located_error() {
+    let text =
+        "Integrator \"bdpt\" \"integer strategy\" [ 2 0 ]\nCamera \"perspective\"\nWorldBegin\n";
+    let e = match load_text(text, "s.pbrt", Path::new("."), &Overrides::default()) {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("s.pbrt:1:"), "{e}");
+    assert!(e.contains("`strategy` must be two integers"), "{e}");
 }
 
 #[test]

@@ -38,10 +38,6 @@ const EXPECTED: &[(&str, &str)] = &[
         "halton is not implemented",
     ),
     (
-        "integrator `bdpt` is not available",
-        "bdpt is not implemented",
-    ),
-    (
         "integrator `sppm` is not available; using `photon`",
         "the SPPM scenes render with lumis' photon method",
     ),

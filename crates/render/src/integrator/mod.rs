@@ -15,6 +15,7 @@
 //! pass), and its parameters read in `load/options.rs` from its own
 //! [`lumis_scene::ParamSpec`] table.
 
+pub mod bdpt;
 pub mod direct;
 pub mod driver;
 pub mod lighting;
@@ -66,12 +67,20 @@ pub enum Integrator {
     /// Light tracing: light paths connected to the camera (pbrt-v4's
     /// `lightpath`), the oracle for caustics from delta lights.
     LightTracer { max_depth: u32 },
+    /// Bidirectional path tracing with MIS over all connection strategies.
+    Bdpt(bdpt::BdptSettings),
 }
 
 impl Integrator {
     /// Names as written in scene files (`Integrator "photon"`).
-    pub const NAMES: &'static [&'static str] =
-        &["path", "direct", "photon", "lighttracer", "lightpath"];
+    pub const NAMES: &'static [&'static str] = &[
+        "path",
+        "direct",
+        "photon",
+        "lighttracer",
+        "lightpath",
+        "bdpt",
+    ];
 
     /// The integrator called `name` with its default settings at `max_depth`
     /// (pbrt-v4's meaning: scattering events after the camera ray; 0 shows
@@ -81,6 +90,7 @@ impl Integrator {
             "path" => Some(Integrator::Path { max_depth }),
             "direct" => Some(Integrator::Direct { max_depth }),
             "lighttracer" | "lightpath" => Some(Integrator::LightTracer { max_depth }),
+            "bdpt" => Some(Integrator::Bdpt(bdpt::BdptSettings::new(max_depth))),
             "photon" => Some(Integrator::Photon(photon::PhotonSettings {
                 max_depth,
                 ..Default::default()
@@ -95,6 +105,7 @@ impl Integrator {
             Integrator::Direct { .. } => "direct",
             Integrator::Photon(_) => "photon",
             Integrator::LightTracer { .. } => "lighttracer",
+            Integrator::Bdpt(_) => "bdpt",
         }
     }
 
@@ -104,6 +115,7 @@ impl Integrator {
             | Integrator::Direct { max_depth }
             | Integrator::LightTracer { max_depth } => *max_depth,
             Integrator::Photon(s) => s.max_depth,
+            Integrator::Bdpt(s) => s.max_depth,
         }
     }
 

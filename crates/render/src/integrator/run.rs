@@ -5,7 +5,7 @@
 
 use super::driver::{Pass, PassReport, SampleCx, Start};
 use super::photon::run::PhotonRun;
-use super::{direct, lighttracer, path, Integrator};
+use super::{bdpt, direct, lighttracer, path, Integrator};
 use crate::geometry::Ray;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler};
@@ -29,6 +29,12 @@ pub enum Run<'a> {
         max_depth: u32,
         scale: f32,
     },
+    /// `scale` as for the light tracer (its `t = 1` strategies splat).
+    Bdpt {
+        scene: &'a Scene,
+        settings: &'a bdpt::BdptSettings,
+        scale: f32,
+    },
 }
 
 impl<'a> Run<'a> {
@@ -50,15 +56,16 @@ impl<'a> Run<'a> {
                 max_depth: *max_depth,
             },
             Integrator::Photon(s) => Run::Photon(Box::new(PhotonRun::new(scene, s, start, saved))),
-            Integrator::LightTracer { max_depth } => {
-                let (w, h) = scene.camera.resolution;
-                let crop = start.crop.area().max(1) as f64;
-                Run::LightTracer {
-                    scene,
-                    max_depth: *max_depth,
-                    scale: (w as f64 * h as f64 / crop) as f32,
-                }
-            }
+            Integrator::LightTracer { max_depth } => Run::LightTracer {
+                scene,
+                max_depth: *max_depth,
+                scale: splat_scale(scene, start),
+            },
+            Integrator::Bdpt(settings) => Run::Bdpt {
+                scene,
+                settings,
+                scale: splat_scale(scene, start),
+            },
         }
     }
 
@@ -69,6 +76,15 @@ impl<'a> Run<'a> {
             _ => None,
         }
     }
+}
+
+/// Splats of light reaching the camera carry the importance of the whole
+/// film: a crop's share of the paths is made up by the film's pixels over
+/// the crop's.
+fn splat_scale(scene: &Scene, start: &Start) -> f32 {
+    let (w, h) = scene.camera.resolution;
+    let crop = start.crop.area().max(1) as f64;
+    (w as f64 * h as f64 / crop) as f32
 }
 
 impl Pass for Run<'_> {
@@ -95,6 +111,11 @@ impl Pass for Run<'_> {
                 lighttracer::trace(scene, sampler, *max_depth, *scale, cx);
                 Rgb::BLACK
             }
+            Run::Bdpt {
+                scene,
+                settings,
+                scale,
+            } => bdpt::li(scene, ray, sampler, settings, *scale, cx),
         }
     }
 

@@ -3,6 +3,7 @@
 use super::Warnings;
 use crate::camera::Camera;
 use crate::film::{Filter, PixelBounds};
+use crate::integrator::bdpt::BdptSettings;
 use crate::integrator::{Integrator, RenderSettings};
 use lumis_math::{Mat3, SamplerKind, Transform, Vec2, Vec3};
 use lumis_scene::{Diagnostic, Entity, Loc, Overrides, SceneDesc};
@@ -270,7 +271,7 @@ fn build_integrator(
             } else {
                 let note = match e.ty.as_str() {
                     "volpath" => "volumes are not rendered yet",
-                    "bdpt" | "mlt" => "it is not implemented",
+                    "mlt" => "it is not implemented",
                     _ => "it is not a lumis integrator",
                 };
                 w.push(Diagnostic::warning(
@@ -315,9 +316,13 @@ fn build_integrator(
     let max_depth = e.params.get_int("maxdepth", 5)?.max(0) as u32;
     let integrator = match e.ty.as_str() {
         "photon" => Integrator::Photon(super::photon::photon_settings(&e, max_depth)?),
+        "bdpt" => Integrator::Bdpt(bdpt_settings(&e, max_depth)?),
         name => Integrator::from_name(name, max_depth).expect("a checked integrator name"),
     };
     let mut known = vec!["maxdepth"];
+    if e.ty == "bdpt" {
+        known.extend(crate::integrator::bdpt::PARAMS.iter().map(|p| p.name));
+    }
     if e.ty == "photon" {
         known.extend(super::photon::names());
         if integrator.photon().is_some_and(|s| s.progressive.is_none()) {
@@ -348,6 +353,27 @@ fn build_integrator(
     }
     w.unused(&e.params, &format!("integrator \"{}\"", e.ty), &known);
     Ok(integrator)
+}
+
+/// `bdpt`'s settings: `strategy` [s t] renders one strategy alone, `mis`
+/// weights them (the default).
+fn bdpt_settings(e: &Entity, max_depth: u32) -> Result<BdptSettings, Diagnostic> {
+    let p = &e.params;
+    let mut st = BdptSettings::new(max_depth);
+    st.mis = p.get_bool("mis", true)?;
+    if let Some(loc) = p.loc_of("strategy") {
+        let v = p.get_ints("strategy")?.unwrap_or_default();
+        match v[..] {
+            [s, t] if s >= 0 && t >= 1 => st.strategy = Some((s as u32, t as u32)),
+            _ => {
+                return Err(Diagnostic::error(
+                    &loc,
+                    format!("`strategy` must be two integers S >= 0 and T >= 1, found {v:?}"),
+                ))
+            }
+        }
+    }
+    Ok(st)
 }
 
 /// Parameters of `photon` that only the progressive mode reads.

@@ -1,0 +1,263 @@
+//! `bdpt` (bidirectional path tracing with MIS over every connection
+//! strategy) against what is known: the furnace's `Le sum a^k` with pbrt's
+//! `maxdepth`, `path`'s committed references and images where `path` is
+//! exact (area lights, an environment light), and the light tracer's
+//! reference on a spot light's caustic, which `path` cannot render. Its
+//! MIS: every strategy rendered alone (weighted) sums to the full image,
+//! and strategies of one depth rendered alone and unweighted estimate the
+//! same light. Same bits on any thread count.
+
+mod common;
+
+use common::*;
+use lumis_render::image_io::read_image;
+use lumis_render::load::{load_path, LoadedScene, Overrides};
+use std::path::PathBuf;
+
+fn image_mean(img: &[f32]) -> f64 {
+    img.iter().map(|&v| v as f64).sum::<f64>() / img.len() as f64
+}
+
+/// Mean and standard error of the image mean over `seeds` renders.
+fn over_seeds(l: &LoadedScene, spp: u32, seeds: std::ops::Range<u64>) -> (f64, f64) {
+    let v: Vec<f64> = seeds
+        .map(|s| image_mean(&render_loaded(l, spp, s, 0).film.mean_image()))
+        .collect();
+    sample_mean_and_se(&v)
+}
+
+fn assert_close(label: &str, (mean, se): (f64, f64), expected: f64, expected_se: f64) {
+    let se = (se * se + expected_se * expected_se).sqrt();
+    if se == 0.0 {
+        // A noiseless estimate (the light seen directly): exact.
+        eprintln!("{label}: {mean:.6}, expected {expected:.6}");
+        assert!((mean - expected).abs() < 1e-6 * expected, "{label}: {mean}");
+        return;
+    }
+    let z = (mean - expected) / se;
+    eprintln!("{label}: {mean:.5} ± {se:.5}, expected {expected:.5}, z {z:.2}");
+    assert!(
+        z.abs() < 4.5,
+        "{label}: {mean} is {z:.1} standard errors from {expected}"
+    );
+    assert!(
+        se < 0.01 * expected,
+        "{label}: too noisy to see a 1% bias (se {se})"
+    );
+}
+
+#[test]
+fn furnace_converges_to_le_sum_of_albedo_powers_with_pbrts_maxdepth() {
+    for (a, le, d) in [
+        (0.5f32, 0.5f32, 0u32),
+        (0.5, 0.5, 1),
+        (0.5, 0.5, 2),
+        (0.5, 0.5, 12),
+        (0.8, 0.2, 16),
+    ] {
+        let expected: f64 = (0..=d).map(|k| le as f64 * (a as f64).powi(k as i32)).sum();
+        let l = load(&emitting_furnace(a, le, "bdpt", d), &Default::default());
+        assert_close(
+            &format!("albedo {a}, maxdepth {d}"),
+            over_seeds(&l, 16, 0..8),
+            expected,
+            0.0,
+        );
+    }
+}
+
+/// The caustic regions of the glass sphere over a diffuse and over a rough
+/// aluminium floor (small area light) against `path`'s committed
+/// million-sample references.
+#[test]
+fn caustic_regions_agree_with_path() {
+    for name in ["caustic_sphere", "caustic_sphere_glossy"] {
+        let mut ov = Overrides::default();
+        ov.crop_from(CAUSTIC_CROP, "test").integrator("bdpt");
+        let l = load_path(&test_scene(name), &ov).unwrap();
+        let (r, r_se) = caustic_reference(name);
+        assert_close(name, over_seeds(&l, 512, 0..8), r, r_se);
+    }
+}
+
+/// The white furnace: a white diffuse sphere under a uniform environment
+/// of radiance 1 is radiance 1 everywhere (the environment reached by light
+/// samples and escaped rays).
+#[test]
+fn white_furnace_is_one_under_an_environment_light() {
+    let l = load(
+        &white_furnace("bdpt", r#"Material "diffuse" "rgb reflectance" [ 1 1 1 ]"#).replace(
+            r#""integer maxdepth" [ 300 ]"#,
+            r#""integer maxdepth" [ 40 ]"#,
+        ),
+        &Default::default(),
+    );
+    // 40 bounces of albedo 1: what is left beyond them is nil for a convex
+    // sphere (light leaves it after one bounce).
+    assert_close("white furnace", over_seeds(&l, 16, 0..8), 1.0, 0.0);
+}
+
+/// Bitterli's Cornell box: the whole image and its channels against `path`.
+#[test]
+fn cornell_box_agrees_with_path() {
+    let Some(scene) = shared_scene("bitterli-cornell-box/scene-v4.pbrt") else {
+        return;
+    };
+    let image = |integrator: &str, spp: u32| {
+        let mut ov = Overrides::default();
+        ov.resolution(32, 32).integrator(integrator);
+        let l = load_path(&scene, &ov).unwrap();
+        render_loaded(&l, spp, 5, 0).film.mean_image()
+    };
+    let (b, p) = (image("bdpt", 256), image("path", 1024));
+    for c in 0..3 {
+        let sum = |img: &[f32]| {
+            img.iter()
+                .skip(c)
+                .step_by(3)
+                .map(|&v| v as f64)
+                .sum::<f64>()
+        };
+        let r = sum(&b) / sum(&p);
+        eprintln!("channel {c}: bdpt / path {r:.4}");
+        assert!((r - 1.0).abs() < 0.01, "channel {c}: {r:.4}");
+    }
+}
+
+/// The spot light's focused caustic through a glass sphere (`path` cannot
+/// see it) against the light tracer's committed 262k-spp reference of
+/// the region (`lighttracer.rs`).
+#[test]
+fn spot_light_caustic_agrees_with_the_light_tracer() {
+    let r = read_image(&test_data("spot_glass_lt_mean.exr")).expect("committed reference");
+    let mut ov = Overrides::default();
+    ov.crop_from([0.453125, 0.546875, 0.640625, 0.703125], "test")
+        .integrator("bdpt");
+    let scene =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/caustics/spot-glass.pbrt");
+    let l = load_path(&scene, &ov).unwrap();
+    assert_close(
+        "spot-glass caustic",
+        over_seeds(&l, 1024, 0..8),
+        image_mean(&r.data),
+        0.0,
+    );
+}
+
+/// A small all-diffuse room (so that every strategy can make every path)
+/// lit by a small area light, for the MIS tests.
+fn diffuse_room(extra: &str, maxdepth: u32) -> String {
+    format!(
+        r#"Integrator "bdpt" "integer maxdepth" [ {maxdepth} ] {extra}
+{}
+LookAt 0 1 3.5  0 0.8 0  0 1 0
+Camera "perspective" "float fov" [ 45 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 5 5 5 ] "bool twosided" true
+  Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+  Shape "trianglemesh" "point3 P" [ -0.5 1.8 -0.5  0.5 1.8 -0.5  0.5 1.8 0.5  -0.5 1.8 0.5 ] "integer indices" [ 0 2 1 0 3 2 ]
+AttributeEnd
+Material "diffuse" "rgb reflectance" [ 0.7 0.6 0.5 ]
+Shape "trianglemesh" "point3 P" [ -2 0 -2  2 0 -2  2 0 2  -2 0 2  -2 2.01 -2  2 2.01 -2  2 2.01 2  -2 2.01 2 ]
+  "integer indices" [ 0 1 2 0 2 3  4 6 5 4 7 6  0 4 5 0 5 1  0 3 7 0 7 4  1 5 6 1 6 2 ]
+Material "diffuse" "rgb reflectance" [ 0.3 0.5 0.8 ]
+AttributeBegin
+  Translate 0.3 0.4 -0.2
+  Shape "sphere" "float radius" [ 0.4 ]
+AttributeEnd
+"#,
+        header(16)
+    )
+}
+
+/// Every strategy `(s, t)` rendered alone, with its MIS weight, from the
+/// same seed: their images add up to the full render's.
+#[test]
+fn weighted_strategies_sum_to_the_full_image() {
+    let maxdepth = 3u32;
+    let full = render_loaded(
+        &load(&diffuse_room("", maxdepth), &Default::default()),
+        4,
+        7,
+        1,
+    )
+    .film
+    .mean_image();
+    let mut sum = vec![0.0f64; full.len()];
+    for t in 1..=maxdepth + 2 {
+        for s in 0..=maxdepth + 2 - t {
+            if s == 1 && t == 1 {
+                continue;
+            }
+            let extra = format!(r#""integer strategy" [ {s} {t} ]"#);
+            let img = render_loaded(
+                &load(&diffuse_room(&extra, maxdepth), &Default::default()),
+                4,
+                7,
+                1,
+            )
+            .film
+            .mean_image();
+            for (a, &b) in sum.iter_mut().zip(&img) {
+                *a += b as f64;
+            }
+        }
+    }
+    let total: f64 = full.iter().map(|&v| v as f64).sum();
+    assert!(total > 0.0);
+    let worst = full
+        .iter()
+        .zip(&sum)
+        .map(|(&f, &s)| (f as f64 - s).abs() / (f as f64).abs().max(1e-3))
+        .fold(0.0, f64::max);
+    eprintln!("largest relative difference {worst:.2e}");
+    assert!(worst < 1e-4, "strategies do not add up: {worst:.2e}");
+}
+
+/// Strategies of one depth rendered alone without weights each estimate
+/// the light over paths of that depth: their image means agree.
+#[test]
+fn unweighted_strategies_of_one_depth_agree() {
+    for depth in [1u32, 2] {
+        let mut means = Vec::new();
+        for s in 0..=depth + 2 {
+            let t = depth + 2 - s;
+            if t == 0 || (s == 1 && t == 1) {
+                continue;
+            }
+            let extra = format!(r#""integer strategy" [ {s} {t} ] "bool mis" false"#);
+            let l = load(&diffuse_room(&extra, depth), &Default::default());
+            // Hitting the light (s = 0) is the noisiest way to find it.
+            let spp = if s == 0 { 2048 } else { 1024 };
+            let m = over_seeds(&l, spp, 0..8);
+            eprintln!("depth {depth}, ({s}, {t}): {:.5} ± {:.5}", m.0, m.1);
+            means.push(((s, t), m));
+        }
+        // Against the most precise of them.
+        let (_, base) = *means
+            .iter()
+            .min_by(|a, b| a.1 .1.total_cmp(&b.1 .1))
+            .unwrap();
+        for ((s, t), m) in &means {
+            assert_close(&format!("depth {depth} ({s}, {t})"), *m, base.0, base.1);
+        }
+    }
+}
+
+#[test]
+fn same_bits_on_any_thread_count() {
+    let l = load_path(&test_scene("caustic_sphere"), &{
+        let mut ov = Overrides::default();
+        ov.resolution(24, 24).integrator("bdpt");
+        ov
+    })
+    .unwrap();
+    let bits = |threads| -> Vec<u32> {
+        let img = render_loaded(&l, 4, 3, threads).film.mean_image();
+        img.iter().map(|v| v.to_bits()).collect()
+    };
+    let one = bits(1);
+    assert!(one.iter().any(|&b| b != 0), "nothing rendered");
+    assert_eq!(one, bits(2));
+}
