@@ -1,7 +1,7 @@
 //! Command-line arguments as typed (first stage); `run.rs` turns them into settings.
 
 use clap::{Arg, ArgAction, ArgMatches, Args, FromArgMatches, Parser, Subcommand};
-use lumis_render::integrator::photon::PARAMS;
+use lumis_render::integrator::{bdpt, photon};
 use lumis_scene::ParamSpec;
 use std::path::PathBuf;
 
@@ -156,6 +156,15 @@ pub struct RenderArgs {
     pub inject_nan: Option<(u32, u32, u32)>,
 }
 
+/// The integrators' parameter tables the flags are made from.
+const TABLES: [(&str, &[ParamSpec]); 2] = [("photon", photon::PARAMS), ("bdpt", bdpt::PARAMS)];
+
+fn all_params() -> impl Iterator<Item = (&'static str, &'static ParamSpec)> {
+    TABLES
+        .iter()
+        .flat_map(|(name, table)| table.iter().map(move |s| (*name, s)))
+}
+
 /// Flags made from the integrators' parameter tables: `--caustic-photons N`
 /// for `"integer causticphotons"`, so each parameter is declared once.
 #[derive(Clone, Debug, Default)]
@@ -166,9 +175,8 @@ pub struct IntegratorParams {
 
 impl FromArgMatches for IntegratorParams {
     fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
-        let values = PARAMS
-            .iter()
-            .filter_map(|s| m.get_one::<String>(s.name).map(|v| (s, v.clone())))
+        let values = all_params()
+            .filter_map(|(_, s)| m.get_one::<String>(s.name).map(|v| (s, v.clone())))
             .collect();
         Ok(IntegratorParams { values })
     }
@@ -180,11 +188,11 @@ impl FromArgMatches for IntegratorParams {
 
 impl Args for IntegratorParams {
     fn augment_args(mut cmd: clap::Command) -> clap::Command {
-        for s in PARAMS {
+        for (integrator, s) in all_params() {
             let mut a = Arg::new(s.name)
                 .long(s.words)
                 .value_name(s.value)
-                .help(format!("photon: {}", s.help))
+                .help(format!("{integrator}: {}", s.help))
                 .action(ArgAction::Set);
             if s.ty == "bool" {
                 // `--aim-caustics` alone means true.

@@ -50,6 +50,8 @@ fn overrides(a: &RenderArgs) -> Overrides {
     for (s, v) in &a.params.values {
         let value = match s.ty {
             "string" => format!("\"{v}\""),
+            // `--strategy 2,3`: a list of integers.
+            "integer" => v.replace(',', " "),
             _ => v.clone(),
         };
         o.param(

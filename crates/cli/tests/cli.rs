@@ -138,6 +138,43 @@ fn bad_arguments_are_refused() {
     }
 }
 
+/// `bdpt`'s flags come from its parameter table: `--strategy S,T` renders
+/// one strategy, and a malformed one is an error located at the flag.
+#[test]
+fn bdpt_strategy_flag_renders_one_strategy_or_is_a_located_error() {
+    let d = temp_dir("cli", "bdpt");
+    let base = [
+        "render",
+        "--integrator",
+        "bdpt",
+        "--resolution",
+        "16x16",
+        "--spp",
+        "2",
+    ];
+    let o = lumis(
+        &d,
+        &[
+            &base[..],
+            &["--strategy", "2,1", "--mis", "false", "-o", "s.exr"],
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("s.exr").exists());
+    let o = lumis(
+        &d,
+        &[&base[..], &["--strategy", "2", "-o", "t.exr"]].concat(),
+    );
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(
+        e.contains("--strategy:1:") && e.contains("two integers"),
+        "{e}"
+    );
+    assert!(!d.join("t.exr").exists());
+}
+
 #[test]
 fn interrupt_writes_the_image_so_far_with_its_sample_count() {
     let d = temp_dir("cli", "sigint");
