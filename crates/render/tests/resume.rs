@@ -79,6 +79,11 @@ fn lighttracer_resume_is_bit_identical() {
 }
 
 #[test]
+fn bdpt_resume_is_bit_identical() {
+    resume_equals_uninterrupted("bdpt", 6, 2);
+}
+
+#[test]
 fn injected_nan_is_dropped_counted_and_located() {
     let l = scene("path");
     let s = RenderSettings {
