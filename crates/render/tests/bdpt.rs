@@ -11,40 +11,8 @@ mod common;
 
 use common::*;
 use lumis_render::image_io::read_image;
-use lumis_render::load::{load_path, LoadedScene, Overrides};
+use lumis_render::load::{load_path, Overrides};
 use std::path::PathBuf;
-
-fn image_mean(img: &[f32]) -> f64 {
-    img.iter().map(|&v| v as f64).sum::<f64>() / img.len() as f64
-}
-
-/// Mean and standard error of the image mean over `seeds` renders.
-fn over_seeds(l: &LoadedScene, spp: u32, seeds: std::ops::Range<u64>) -> (f64, f64) {
-    let v: Vec<f64> = seeds
-        .map(|s| image_mean(&render_loaded(l, spp, s, 0).film.mean_image()))
-        .collect();
-    sample_mean_and_se(&v)
-}
-
-fn assert_close(label: &str, (mean, se): (f64, f64), expected: f64, expected_se: f64) {
-    let se = (se * se + expected_se * expected_se).sqrt();
-    if se == 0.0 {
-        // A noiseless estimate (the light seen directly): exact.
-        eprintln!("{label}: {mean:.6}, expected {expected:.6}");
-        assert!((mean - expected).abs() < 1e-6 * expected, "{label}: {mean}");
-        return;
-    }
-    let z = (mean - expected) / se;
-    eprintln!("{label}: {mean:.5} ± {se:.5}, expected {expected:.5}, z {z:.2}");
-    assert!(
-        z.abs() < 4.5,
-        "{label}: {mean} is {z:.1} standard errors from {expected}"
-    );
-    assert!(
-        se < 0.01 * expected,
-        "{label}: too noisy to see a 1% bias (se {se})"
-    );
-}
 
 #[test]
 fn furnace_converges_to_le_sum_of_albedo_powers_with_pbrts_maxdepth() {
@@ -100,25 +68,10 @@ fn white_furnace_is_one_under_an_environment_light() {
 /// Bitterli's Cornell box: the whole image and its channels against `path`.
 #[test]
 fn cornell_box_agrees_with_path() {
-    let Some(scene) = shared_scene("bitterli-cornell-box/scene-v4.pbrt") else {
+    let (Some(b), Some(p)) = (cornell_box("bdpt", 256, 32), cornell_box("path", 1024, 32)) else {
         return;
     };
-    let image = |integrator: &str, spp: u32| {
-        let mut ov = Overrides::default();
-        ov.resolution(32, 32).integrator(integrator);
-        let l = load_path(&scene, &ov).unwrap();
-        render_loaded(&l, spp, 5, 0).film.mean_image()
-    };
-    let (b, p) = (image("bdpt", 256), image("path", 1024));
-    for c in 0..3 {
-        let sum = |img: &[f32]| {
-            img.iter()
-                .skip(c)
-                .step_by(3)
-                .map(|&v| v as f64)
-                .sum::<f64>()
-        };
-        let r = sum(&b) / sum(&p);
+    for (c, r) in channel_ratios(&b, &p).into_iter().enumerate() {
         eprintln!("channel {c}: bdpt / path {r:.4}");
         assert!((r - 1.0).abs() < 0.01, "channel {c}: {r:.4}");
     }
@@ -139,7 +92,7 @@ fn spot_light_caustic_agrees_with_the_light_tracer() {
     assert_close(
         "spot-glass caustic",
         over_seeds(&l, 1024, 0..8),
-        image_mean(&r.data),
+        r.data.iter().map(|&v| v as f64).sum::<f64>() / r.data.len() as f64,
         0.0,
     );
 }
@@ -247,17 +200,5 @@ fn unweighted_strategies_of_one_depth_agree() {
 
 #[test]
 fn same_bits_on_any_thread_count() {
-    let l = load_path(&test_scene("caustic_sphere"), &{
-        let mut ov = Overrides::default();
-        ov.resolution(24, 24).integrator("bdpt");
-        ov
-    })
-    .unwrap();
-    let bits = |threads| -> Vec<u32> {
-        let img = render_loaded(&l, 4, 3, threads).film.mean_image();
-        img.iter().map(|v| v.to_bits()).collect()
-    };
-    let one = bits(1);
-    assert!(one.iter().any(|&b| b != 0), "nothing rendered");
-    assert_eq!(one, bits(2));
+    assert_same_bits_on_one_and_two_threads("bdpt");
 }

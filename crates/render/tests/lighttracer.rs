@@ -13,35 +13,8 @@ mod common;
 
 use common::*;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
-use lumis_render::load::{load_path, LoadedScene, Overrides};
+use lumis_render::load::{load_path, Overrides};
 use std::path::PathBuf;
-
-/// Mean of the whole image (splats included) over the channels.
-fn image_mean(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> f64 {
-    let img = render_loaded(l, spp, seed, threads).film.mean_image();
-    img.iter().map(|&v| v as f64).sum::<f64>() / img.len() as f64
-}
-
-/// Mean and standard error over `seeds` independent renders.
-fn over_seeds(l: &LoadedScene, spp: u32, seeds: std::ops::Range<u64>) -> (f64, f64) {
-    let v: Vec<f64> = seeds.map(|s| image_mean(l, spp, s, 0)).collect();
-    sample_mean_and_se(&v)
-}
-
-fn assert_close(label: &str, (mean, se): (f64, f64), expected: f64, expected_se: f64) {
-    let se = (se * se + expected_se * expected_se).sqrt();
-    let z = (mean - expected) / se;
-    eprintln!("{label}: {mean:.5} ± {se:.5}, expected {expected:.5}, z {z:.2}");
-    // 4.5 sigma: a false alarm about once in 150k runs.
-    assert!(
-        z.abs() < 4.5,
-        "{label}: {mean} is {z:.1} standard errors from {expected}"
-    );
-    assert!(
-        se < 0.01 * expected,
-        "{label}: too noisy to see a 1% bias (se {se})"
-    );
-}
 
 #[test]
 fn furnace_converges_to_le_over_one_minus_albedo_with_pbrts_maxdepth() {
@@ -86,25 +59,13 @@ fn caustic_regions_agree_with_path() {
 /// filter weight is off by far more.
 #[test]
 fn cornell_box_agrees_with_path() {
-    let Some(scene) = shared_scene("bitterli-cornell-box/scene-v4.pbrt") else {
+    let (Some(lt), Some(path)) = (
+        cornell_box("lighttracer", 1024, 64),
+        cornell_box("path", 512, 64),
+    ) else {
         return;
     };
-    let image = |integrator: &str, spp: u32| {
-        let mut ov = Overrides::default();
-        ov.resolution(64, 64).integrator(integrator);
-        let l = load_path(&scene, &ov).unwrap();
-        render_loaded(&l, spp, 5, 0).film.mean_image()
-    };
-    let (lt, path) = (image("lighttracer", 1024), image("path", 512));
-    for c in 0..3 {
-        let mean = |img: &[f32]| {
-            img.iter()
-                .skip(c)
-                .step_by(3)
-                .map(|&v| v as f64)
-                .sum::<f64>()
-        };
-        let r = mean(&lt) / mean(&path);
+    for (c, r) in channel_ratios(&lt, &path).into_iter().enumerate() {
         eprintln!("channel {c}: lighttracer / path {r:.4}");
         assert!((r - 1.0).abs() < 0.01, "channel {c}: {r:.4}");
     }
@@ -184,19 +145,7 @@ fn white_furnace_sphere_is_one_under_an_environment_light() {
 
 #[test]
 fn same_bits_on_any_thread_count() {
-    let l = load_path(&test_scene("caustic_sphere"), &{
-        let mut ov = Overrides::default();
-        ov.resolution(24, 24).integrator("lighttracer");
-        ov
-    })
-    .unwrap();
-    let bits = |threads| -> Vec<u32> {
-        let img = render_loaded(&l, 8, 3, threads).film.mean_image();
-        img.iter().map(|v| v.to_bits()).collect()
-    };
-    let one = bits(1);
-    assert!(one.iter().any(|&b| b != 0), "nothing rendered");
-    assert_eq!(one, bits(2));
+    assert_same_bits_on_one_and_two_threads("lighttracer");
 }
 
 /// The focused caustic of `scenes/caustics/spot-glass.pbrt` (a spot light

@@ -228,3 +228,79 @@ pub fn caustic_reference(name: &str) -> (f64, f64) {
     let var = v.data.iter().map(|&x| x as f64).sum::<f64>() / (3.0 * n * n);
     (mean, var.sqrt())
 }
+
+/// Mean over pixels and channels of a render's image (splats included).
+pub fn film_mean(l: &LoadedScene, spp: u32, seed: u64, threads: usize) -> f64 {
+    let img = render_loaded(l, spp, seed, threads).film.mean_image();
+    img.iter().map(|&v| v as f64).sum::<f64>() / img.len() as f64
+}
+
+/// Mean and standard error of the image mean over `seeds` independent
+/// renders (for integrators whose pixels share paths: the spread over
+/// seeds, not over pixels).
+pub fn over_seeds(l: &LoadedScene, spp: u32, seeds: std::ops::Range<u64>) -> (f64, f64) {
+    let v: Vec<f64> = seeds.map(|s| film_mean(l, spp, s, 0)).collect();
+    sample_mean_and_se(&v)
+}
+
+/// `mean ± se` within 4.5 standard errors of `expected ± expected_se` (a
+/// false alarm about once in 150k runs), with the test able to see a 1%
+/// bias; an estimate without noise must be exact.
+pub fn assert_close(label: &str, (mean, se): (f64, f64), expected: f64, expected_se: f64) {
+    let se = (se * se + expected_se * expected_se).sqrt();
+    if se == 0.0 {
+        eprintln!("{label}: {mean:.6}, expected {expected:.6}");
+        assert!((mean - expected).abs() < 1e-6 * expected, "{label}: {mean}");
+        return;
+    }
+    let z = (mean - expected) / se;
+    eprintln!("{label}: {mean:.5} ± {se:.5}, expected {expected:.5}, z {z:.2}");
+    assert!(
+        z.abs() < 4.5,
+        "{label}: {mean} is {z:.1} standard errors from {expected}"
+    );
+    assert!(
+        se < 0.01 * expected,
+        "{label}: too noisy to see a 1% bias (se {se})"
+    );
+}
+
+/// Bitterli's Cornell box (shared scene) at `res` x `res` by `integrator`
+/// (seed 5); None, with a notice, where the shared scenes are absent.
+pub fn cornell_box(integrator: &str, spp: u32, res: u32) -> Option<Vec<f32>> {
+    let scene = shared_scene("bitterli-cornell-box/scene-v4.pbrt")?;
+    let mut ov = Overrides::default();
+    ov.resolution(res, res).integrator(integrator);
+    let l = lumis_render::load::load_path(&scene, &ov).unwrap();
+    Some(render_loaded(&l, spp, 5, 0).film.mean_image())
+}
+
+/// Per channel, the sum of image `a` over that of image `b`.
+pub fn channel_ratios(a: &[f32], b: &[f32]) -> [f64; 3] {
+    let sum = |img: &[f32], c: usize| {
+        img.iter()
+            .skip(c)
+            .step_by(3)
+            .map(|&v| v as f64)
+            .sum::<f64>()
+    };
+    [0, 1, 2].map(|c| sum(a, c) / sum(b, c))
+}
+
+/// `integrator` renders the caustic test scene at 24x24 with the same bits
+/// on one thread and on two.
+pub fn assert_same_bits_on_one_and_two_threads(integrator: &str) {
+    let l = lumis_render::load::load_path(&test_scene("caustic_sphere"), &{
+        let mut ov = Overrides::default();
+        ov.resolution(24, 24).integrator(integrator);
+        ov
+    })
+    .unwrap();
+    let bits = |threads| -> Vec<u32> {
+        let img = render_loaded(&l, 4, 3, threads).film.mean_image();
+        img.iter().map(|v| v.to_bits()).collect()
+    };
+    let one = bits(1);
+    assert!(one.iter().any(|&b| b != 0), "nothing rendered");
+    assert_eq!(one, bits(2));
+}

@@ -62,50 +62,58 @@ pub fn weight(
         .zip(qs)
         .map(|(qsm, qs)| pdf(scene, margin, Some(pt), qs, qsm, TransportMode::Radiance));
     let remap = |f: f32| if f != 0.0 { f } else { 1.0 };
-    let mut sum = 0.0f32;
     // Strategies with more light vertices: camera vertices t-1 .. 1 made
     // by the light side instead.
-    let mut ri = 1.0f32;
-    for i in (1..t).rev() {
-        let v = cv(i);
-        let rev = if i == t - 1 {
-            pt_rev
-        } else if i == t - 2 {
-            pt_minus_rev.unwrap_or(0.0)
-        } else {
-            v.pdf_rev
-        };
-        let r = remap(rev) / remap(v.pdf_fwd);
+    let camera_rev = |i: usize| match i {
+        _ if i == t - 1 => pt_rev,
+        _ if i + 2 == t => pt_minus_rev.unwrap_or(0.0),
+        _ => cv(i).pdf_rev,
+    };
+    let more_light = side_sum(
+        1..t,
+        |i| remap(camera_rev(i)) / remap(cv(i).pdf_fwd),
+        |i| (i == t - 1 || !cv(i).delta) && !cv(i - 1).delta,
+    );
+    // Strategies with fewer light vertices: light vertices s-1 .. 0 made
+    // by the camera side instead.
+    let light_rev = |i: usize| match i {
+        _ if i + 1 == s => qs_rev.unwrap_or(0.0),
+        _ if i + 2 == s => qs_minus_rev.unwrap_or(0.0),
+        _ => lv(i).pdf_rev,
+    };
+    let fewer_light = side_sum(
+        0..s,
+        |i| remap(light_rev(i)) / remap(lv(i).pdf_fwd),
+        |i| {
+            let before = match i {
+                0 => is_delta_light(scene, lv(0)),
+                _ => lv(i - 1).delta,
+            };
+            (i + 1 == s || !lv(i).delta) && !before
+        },
+    );
+    1.0 / (1.0 + more_light + fewer_light)
+}
+
+/// The sum, over the strategies that hand the vertices of `range` (from
+/// its end down) one by one to the other subpath, of their densities over
+/// the current one's, squared (the power heuristic): `ratio(i)` is vertex
+/// `i`'s reverse over forward density, `counts(i)` whether that strategy
+/// can exist (no delta vertex at its connection).
+fn side_sum(
+    range: std::ops::Range<usize>,
+    ratio: impl Fn(usize) -> f32,
+    counts: impl Fn(usize) -> bool,
+) -> f32 {
+    let (mut ri, mut sum) = (1.0f32, 0.0f32);
+    for i in range.rev() {
+        let r = ratio(i);
         ri *= r * r;
-        let delta_here = i != t - 1 && v.delta;
-        if !delta_here && !cv(i - 1).delta {
+        if counts(i) {
             sum += ri;
         }
     }
-    // Strategies with fewer light vertices.
-    let mut ri = 1.0f32;
-    for i in (0..s).rev() {
-        let v = lv(i);
-        let rev = if i == s - 1 {
-            qs_rev.unwrap_or(0.0)
-        } else if i == s - 2 {
-            qs_minus_rev.unwrap_or(0.0)
-        } else {
-            v.pdf_rev
-        };
-        let r = remap(rev) / remap(v.pdf_fwd);
-        ri *= r * r;
-        let delta_here = i != s - 1 && v.delta;
-        let delta_before = if i > 0 {
-            lv(i - 1).delta
-        } else {
-            is_delta_light(scene, lv(0))
-        };
-        if !delta_here && !delta_before {
-            sum += ri;
-        }
-    }
-    1.0 / (1.0 + sum)
+    sum
 }
 
 /// A point light (point, spot, goniometric): no camera path can hit it.
