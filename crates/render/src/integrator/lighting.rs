@@ -3,6 +3,7 @@
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::{spawn_ray, spawn_ray_to};
 use crate::geometry::Ray;
+use crate::light::LiSample;
 use crate::scene::{Hit, Scene};
 use lumis_math::mis::power_heuristic;
 use lumis_math::{Rgb, Sampler, Vec3};
@@ -50,14 +51,7 @@ pub fn sample_direct_n(
         return Rgb::BLACK;
     }
     rays.shadow += 1;
-    let shadow = if ls.infinite {
-        let mut r = spawn_ray(p, hit.geom.ng, ls.wi);
-        r.tmax = f32::INFINITY;
-        r
-    } else {
-        spawn_ray_to(p, hit.geom.ng, ls.p_light)
-    };
-    if scene.occluded(&shadow) {
+    if scene.occluded(&shadow_ray(p, hit.geom.ng, &ls)) {
         return Rgb::BLACK;
     }
     let light_pdf = pmf * ls.pdf;
@@ -67,6 +61,18 @@ pub fn sample_direct_n(
     let bsdf_pdf = bsdf.pdf(wo, ls.wi, TransportMode::Radiance);
     let w = power_heuristic(1.0, light_pdf, n_bsdf, bsdf_pdf);
     f * ls.li * (w / light_pdf)
+}
+
+/// The shadow ray from `p` (geometric normal `ng`) to light sample `ls`:
+/// to its point, or unbounded towards a light at infinity.
+pub fn shadow_ray(p: Vec3, ng: Vec3, ls: &LiSample) -> Ray {
+    if ls.infinite {
+        let mut r = spawn_ray(p, ng, ls.wi);
+        r.tmax = f32::INFINITY;
+        r
+    } else {
+        spawn_ray_to(p, ng, ls.p_light)
+    }
 }
 
 /// Emission found by a BSDF-sampled ray, MIS-weighted against light

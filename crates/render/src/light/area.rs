@@ -123,6 +123,17 @@ impl AreaLight {
         }
     }
 
+    /// Solid-angle density of [`AreaLight::sample_le`]'s direction `w`
+    /// from a point with normal `n` (cosine-weighted, each side half of it
+    /// when two-sided; 0 behind a one-sided light).
+    pub fn pdf_dir(&self, n: Vec3, w: Vec3) -> f32 {
+        let cos = n.dot(w);
+        if !self.two_sided && cos <= 0.0 {
+            return 0.0;
+        }
+        cos.abs() / PI * if self.two_sided { 0.5 } else { 1.0 }
+    }
+
     pub fn sample_le(&self, shapes: &Shapes, u1: Vec2, u2: Vec2) -> Option<LeSample> {
         let sp = self.sample_point(shapes, u1);
         let mut n = sp.n;

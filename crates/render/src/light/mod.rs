@@ -234,6 +234,20 @@ impl Light {
         }
     }
 
+    /// Solid-angle density with which [`Light::sample_le`] emits in
+    /// direction `w` from its point with normal `n` (zero at a point
+    /// light). Lights at infinity emit over a disc and a direction
+    /// ([`Light::emitted_flux`] has those densities): 0 here.
+    pub fn pdf_le_dir(&self, n: Vec3, w: Vec3) -> f32 {
+        match self {
+            Light::Area(l) => l.pdf_dir(n, w),
+            Light::Point(_) => lumis_math::sampling::UNIFORM_SPHERE_PDF,
+            Light::Spot(l) => l.pdf_dir(w),
+            Light::Goniometric(l) => l.pdf_dir(w),
+            Light::Distant(_) | Light::Infinite(_) | Light::Image(_) => 0.0,
+        }
+    }
+
     /// Total emitted power (flux), RGB.
     pub fn power(&self, shapes: &Shapes) -> Rgb {
         match self {

@@ -33,6 +33,16 @@ impl SpotLight {
         LiSample::from_point(self.pos, p_ref, |w| self.i(w))
     }
 
+    /// Solid-angle density of [`SpotLight::sample_le`]'s direction `w`:
+    /// uniform over the outer cone.
+    pub fn pdf_dir(&self, w: Vec3) -> f32 {
+        if self.frame.n.dot(w) >= self.cos_falloff_end {
+            uniform_cone_pdf(self.cos_falloff_end)
+        } else {
+            0.0
+        }
+    }
+
     pub fn sample_le(&self, u: Vec2) -> Option<LeSample> {
         let local = square_to_uniform_cone(u, self.cos_falloff_end);
         let d = self.frame.to_world(local);

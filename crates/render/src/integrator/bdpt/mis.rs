@@ -5,7 +5,7 @@
 //! cannot be connected, and a delta light cannot be hit: those strategies
 //! are left out.
 
-use super::vertex::{light_dir_pdf, light_origin_pdf, pdf, to_area, Kind, Vertex};
+use super::vertex::{light_origin_pdf, pdf, to_area, Kind, Vertex};
 use crate::bsdf::TransportMode;
 use crate::scene::Scene;
 use lumis_math::Vec2;
@@ -53,7 +53,7 @@ pub fn weight(
         (Some(qs), _) => pdf(scene, margin, Some(qs), pt, ptm, TransportMode::Importance),
         (None, Some(li)) => {
             let w = (ptm.p - pt.p).normalize_or_zero();
-            to_area(light_dir_pdf(scene, li, pt.ng, w), pt.p, ptm)
+            to_area(scene.lights[li as usize].pdf_le_dir(pt.ng, w), pt.p, ptm)
         }
         (None, None) => 0.0,
     });

@@ -22,7 +22,7 @@ mod vertex;
 mod walk;
 
 use super::driver::SampleCx;
-use super::lighting::escaped_mis;
+use super::lighting::{escaped_mis, shadow_ray};
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray_to;
 use crate::geometry::Ray;
@@ -210,17 +210,9 @@ impl Connect<'_> {
         if f.is_black() {
             return Rgb::BLACK;
         }
-        let beta = ls.li / (pmf * ls.pdf);
-        let l = pt.beta * f * beta;
-        let visible = if ls.infinite {
-            cx.rays.shadow += 1;
-            let mut r = crate::geometry::ray::spawn_ray(pt.p, pt.ng, ls.wi);
-            r.tmax = f32::INFINITY;
-            !scene.occluded(&r)
-        } else {
-            self.visible(pt, ls.p_light, cx)
-        };
-        if !visible {
+        let l = pt.beta * f * (ls.li / (pmf * ls.pdf));
+        cx.rays.shadow += 1;
+        if scene.occluded(&shadow_ray(pt.p, pt.ng, &ls)) {
             return Rgb::BLACK;
         }
         if light.is_infinite() {
@@ -233,14 +225,12 @@ impl Connect<'_> {
                 .map_or(0.0, |b| b.pdf(pt.wo, ls.wi, TransportMode::Radiance));
             return l * power_heuristic(1.0, pmf * ls.pdf, 1.0, bsdf_pdf);
         }
-        let mut v = Vertex::light(
+        let v = Vertex::light(
             li,
             ls.p_light,
             ls.n_light,
-            beta,
             light_origin_pdf(scene, li, ls.p_light),
         );
-        v.wo = -ls.wi;
         l * self.weight(1, t, Some(&v))
     }
 
@@ -257,7 +247,7 @@ impl Connect<'_> {
         if l.is_black() || !l.is_finite() || !self.visible(qs, c.p_lens, cx) {
             return None;
         }
-        let v = Vertex::camera(c.p_lens, Vec3::ZERO);
+        let v = Vertex::camera(c.p_lens);
         Some((c.p_raster, l * self.weight(s, 1, Some(&v))))
     }
 

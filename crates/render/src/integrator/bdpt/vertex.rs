@@ -6,8 +6,7 @@
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::light::Light;
 use crate::scene::Scene;
-use lumis_math::sampling::{uniform_cone_pdf, UNIFORM_SPHERE_PDF};
-use lumis_math::{Rgb, Vec2, Vec3, PI};
+use lumis_math::{Rgb, Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
@@ -46,12 +45,13 @@ pub struct Vertex {
 }
 
 impl Vertex {
-    pub fn camera(p: Vec3, ng: Vec3) -> Vertex {
+    /// The lens point (no normal: densities towards it are never needed).
+    pub fn camera(p: Vec3) -> Vertex {
         Vertex {
             kind: Kind::Camera,
             p,
             ng: Vec3::ZERO,
-            ns: ng,
+            ns: Vec3::ZERO,
             beta: Rgb::WHITE,
             pdf_fwd: 0.0,
             pdf_rev: 0.0,
@@ -63,15 +63,17 @@ impl Vertex {
         }
     }
 
-    /// A point on light `li` (its `delta` stays false: a point light can be
-    /// connected to; that no path can hit it is the MIS weights' concern).
-    pub fn light(li: u32, p: Vec3, n: Vec3, beta: Rgb, pdf_fwd: f32) -> Vertex {
+    /// A point on light `li`, for the MIS weights only (a connection to a
+    /// light samples its own point: `s = 1`), so no throughput. Its `delta`
+    /// stays false: a point light can be connected to; that no path can
+    /// hit it is the MIS weights' concern.
+    pub fn light(li: u32, p: Vec3, n: Vec3, pdf_fwd: f32) -> Vertex {
         Vertex {
             kind: Kind::Light(li),
             p,
             ng: n,
             ns: n,
-            beta,
+            beta: Rgb::BLACK,
             pdf_fwd,
             pdf_rev: 0.0,
             delta: false,
@@ -138,7 +140,7 @@ pub fn pdf(
     let w = (next.p - cur.p).normalize_or_zero();
     let dir = match cur.kind {
         Kind::Camera => scene.camera.pdf_dir(cur.p, w, margin),
-        Kind::Light(li) => light_dir_pdf(scene, li, cur.ng, w),
+        Kind::Light(li) => scene.lights[li as usize].pdf_le_dir(cur.ng, w),
         Kind::Surface => {
             let (Some(b), Some(prev)) = (&cur.bsdf, prev) else {
                 return 0.0;
@@ -148,30 +150,6 @@ pub fn pdf(
         }
     };
     to_area(dir, cur.p, next)
-}
-
-/// Density per solid angle of light `li` emitting from `p` (normal `n`)
-/// in direction `w`, as its `sample_le` does.
-pub fn light_dir_pdf(scene: &Scene, li: u32, n: Vec3, w: Vec3) -> f32 {
-    match &scene.lights[li as usize] {
-        Light::Area(a) => {
-            let cos = n.dot(w);
-            if !a.two_sided && cos <= 0.0 {
-                return 0.0;
-            }
-            cos.abs() / PI * if a.two_sided { 0.5 } else { 1.0 }
-        }
-        Light::Point(_) => UNIFORM_SPHERE_PDF,
-        Light::Spot(s) => {
-            if s.frame.n.dot(w) >= s.cos_falloff_end {
-                uniform_cone_pdf(s.cos_falloff_end)
-            } else {
-                0.0
-            }
-        }
-        Light::Goniometric(g) => g.pdf_dir(w),
-        Light::Distant(_) | Light::Infinite(_) | Light::Image(_) => 0.0,
-    }
 }
 
 /// Area density with which a light subpath starts at `v` (a point on a

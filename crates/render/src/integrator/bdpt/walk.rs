@@ -9,7 +9,7 @@ use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler, Vec3};
+use lumis_math::{Rgb, Sampler};
 
 /// Where a camera subpath ended: the escaped ray (for infinite lights)
 /// and the previous vertex's BSDF density of its direction.
@@ -33,12 +33,7 @@ pub fn camera_path(
     rays: &mut crate::integrator::RayCounts,
 ) -> Option<Escape> {
     path.clear();
-    let forward = scene
-        .camera
-        .world_from_camera
-        .vector(Vec3::Z)
-        .normalize_or_zero();
-    path.push(Vertex::camera(ray.o, forward));
+    path.push(Vertex::camera(ray.o));
     let pdf_dir = scene.camera.pdf_dir(ray.o, ray.d, margin);
     rays.camera += 1;
     walk(
@@ -83,13 +78,7 @@ pub fn light_path(
         return;
     }
     // The ray's origin: the sampled point (offset off an area light).
-    path.push(Vertex::light(
-        li,
-        le.ray.o,
-        le.n,
-        le.le / (pmf * le.pdf_pos),
-        pmf * le.pdf_pos,
-    ));
+    path.push(Vertex::light(li, le.ray.o, le.n, pmf * le.pdf_pos));
     let beta = le.flux_weight() / pmf;
     walk(
         scene,
@@ -177,8 +166,8 @@ fn walk(
         };
         pdf_dir = fwd;
         specular = bs.delta;
-        let (cur, prev) = (path[n - 1], path[n - 2]);
-        path[n - 2].pdf_rev = to_area(rev, cur.p, &prev);
+        let cur_p = path[n - 1].p;
+        path[n - 2].pdf_rev = to_area(rev, cur_p, &path[n - 2]);
         ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
     }
     None
