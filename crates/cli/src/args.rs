@@ -1,7 +1,7 @@
 //! Command-line arguments as typed (first stage); `run.rs` turns them into settings.
 
 use clap::{Arg, ArgAction, ArgMatches, Args, FromArgMatches, Parser, Subcommand};
-use lumis_render::integrator::{bdpt, photon};
+use lumis_render::integrator::{bdpt, photon, vcm};
 use lumis_scene::ParamSpec;
 use std::path::PathBuf;
 
@@ -157,12 +157,28 @@ pub struct RenderArgs {
 }
 
 /// The integrators' parameter tables the flags are made from.
-const TABLES: [(&str, &[ParamSpec]); 2] = [("photon", photon::PARAMS), ("bdpt", bdpt::PARAMS)];
+const TABLES: [(&str, &[ParamSpec]); 3] = [
+    ("photon", photon::PARAMS),
+    ("bdpt", bdpt::PARAMS),
+    ("vcm", vcm::PARAMS),
+];
 
-fn all_params() -> impl Iterator<Item = (&'static str, &'static ParamSpec)> {
-    TABLES
-        .iter()
-        .flat_map(|(name, table)| table.iter().map(move |s| (*name, s)))
+/// Each parameter once (a name two integrators share makes one flag), with
+/// its help: each integrator that reads it and what it means there.
+fn all_params() -> impl Iterator<Item = (String, &'static ParamSpec)> {
+    let all = || {
+        TABLES
+            .iter()
+            .flat_map(|(name, table)| table.iter().map(move |s| (*name, s)))
+    };
+    all().enumerate().filter_map(move |(i, (_, s))| {
+        let help: Vec<String> = all()
+            .filter(|(_, o)| o.name == s.name)
+            .map(|(n, o)| format!("{n}: {}", o.help))
+            .collect();
+        let first = all().position(|(_, o)| o.name == s.name) == Some(i);
+        first.then(|| (help.join("; "), s))
+    })
 }
 
 /// Flags made from the integrators' parameter tables: `--caustic-photons N`
@@ -188,11 +204,11 @@ impl FromArgMatches for IntegratorParams {
 
 impl Args for IntegratorParams {
     fn augment_args(mut cmd: clap::Command) -> clap::Command {
-        for (integrator, s) in all_params() {
+        for (help, s) in all_params() {
             let mut a = Arg::new(s.name)
                 .long(s.words)
                 .value_name(s.value)
-                .help(format!("{integrator}: {}", s.help))
+                .help(help)
                 .action(ArgAction::Set);
             if s.ty == "bool" {
                 // `--aim-caustics` alone means true.

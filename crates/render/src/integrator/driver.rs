@@ -152,6 +152,8 @@ pub struct Start {
     pub crop: PixelBounds,
     pub time_limit: Option<Duration>,
     pub sampler: SamplerKind,
+    /// Samples per pixel in each pass.
+    pub spp_per_pass: u32,
 }
 
 /// What an integrator is told after each pass.
@@ -281,6 +283,7 @@ pub fn render_with(
             crop: settings.crop,
             time_limit: settings.time_limit,
             sampler: settings.sampler,
+            spp_per_pass: settings.spp_per_pass.max(1),
         };
         let saved = hooks.resume.as_ref().map(|s| s.integrator.as_slice());
         let mut run = Run::new(integrator, scene, &start, saved);

@@ -23,6 +23,7 @@ pub mod lighttracer;
 pub mod path;
 pub mod photon;
 pub mod run;
+pub mod vcm;
 
 pub use driver::{
     render, render_with, BadSample, Progress, RenderHooks, RenderOutcome, RenderSettings,
@@ -69,6 +70,9 @@ pub enum Integrator {
     LightTracer { max_depth: u32 },
     /// Bidirectional path tracing with MIS over all connection strategies.
     Bdpt(bdpt::BdptSettings),
+    /// Vertex connection and merging: bdpt's strategies and photon-map
+    /// merges, MIS-weighted, with a radius that shrinks over passes.
+    Vcm(vcm::VcmSettings),
 }
 
 impl Integrator {
@@ -80,6 +84,7 @@ impl Integrator {
         "lighttracer",
         "lightpath",
         "bdpt",
+        "vcm",
     ];
 
     /// The integrator called `name` with its default settings at `max_depth`
@@ -91,6 +96,7 @@ impl Integrator {
             "direct" => Some(Integrator::Direct { max_depth }),
             "lighttracer" | "lightpath" => Some(Integrator::LightTracer { max_depth }),
             "bdpt" => Some(Integrator::Bdpt(bdpt::BdptSettings::new(max_depth))),
+            "vcm" => Some(Integrator::Vcm(vcm::VcmSettings::new(max_depth))),
             "photon" => Some(Integrator::Photon(photon::PhotonSettings {
                 max_depth,
                 ..Default::default()
@@ -106,6 +112,7 @@ impl Integrator {
             Integrator::Photon(_) => "photon",
             Integrator::LightTracer { .. } => "lighttracer",
             Integrator::Bdpt(_) => "bdpt",
+            Integrator::Vcm(_) => "vcm",
         }
     }
 
@@ -116,6 +123,7 @@ impl Integrator {
             | Integrator::LightTracer { max_depth } => *max_depth,
             Integrator::Photon(s) => s.max_depth,
             Integrator::Bdpt(s) => s.max_depth,
+            Integrator::Vcm(s) => s.max_depth,
         }
     }
 

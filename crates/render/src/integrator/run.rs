@@ -5,6 +5,7 @@
 
 use super::driver::{Pass, PassReport, SampleCx, Start};
 use super::photon::run::PhotonRun;
+use super::vcm::VcmRun;
 use super::{bdpt, direct, lighttracer, path, Integrator};
 use crate::geometry::Ray;
 use crate::scene::Scene;
@@ -35,6 +36,7 @@ pub enum Run<'a> {
         settings: &'a bdpt::BdptSettings,
         scale: f32,
     },
+    Vcm(Box<VcmRun<'a>>),
 }
 
 impl<'a> Run<'a> {
@@ -66,6 +68,13 @@ impl<'a> Run<'a> {
                 settings,
                 scale: splat_scale(scene, start),
             },
+            Integrator::Vcm(s) => Run::Vcm(Box::new(VcmRun::new(
+                scene,
+                s,
+                start,
+                splat_scale(scene, start),
+                saved,
+            ))),
         }
     }
 
@@ -91,6 +100,7 @@ impl Pass for Run<'_> {
     fn before_pass(&mut self, cancel: &AtomicBool) -> bool {
         match self {
             Run::Photon(p) => p.before_pass(cancel),
+            Run::Vcm(v) => v.before_pass(cancel),
             _ => true,
         }
     }
@@ -116,25 +126,30 @@ impl Pass for Run<'_> {
                 settings,
                 scale,
             } => bdpt::li(scene, ray, sampler, settings, *scale, cx),
+            Run::Vcm(v) => v.li(ray, sampler, cx),
         }
     }
 
     fn next_cost(&self, r: &PassReport, pass_time: Duration) -> Option<Duration> {
         match self {
             Run::Photon(p) => p.next_cost(r, pass_time),
+            Run::Vcm(v) => v.next_cost(r, pass_time),
             _ => Some(pass_time),
         }
     }
 
     fn after_pass(&mut self, r: &PassReport) {
-        if let Run::Photon(p) = self {
-            p.after_pass(r);
+        match self {
+            Run::Photon(p) => p.after_pass(r),
+            Run::Vcm(v) => v.after_pass(),
+            _ => {}
         }
     }
 
     fn save(&self) -> Vec<u8> {
         match self {
             Run::Photon(p) => p.save(),
+            Run::Vcm(v) => v.save(),
             _ => Vec::new(),
         }
     }

@@ -4,6 +4,7 @@ use super::Warnings;
 use crate::camera::Camera;
 use crate::film::{Filter, PixelBounds};
 use crate::integrator::bdpt::BdptSettings;
+use crate::integrator::vcm::VcmSettings;
 use crate::integrator::{Integrator, RenderSettings};
 use lumis_math::{Mat3, SamplerKind, Transform, Vec2, Vec3};
 use lumis_scene::{Diagnostic, Entity, Loc, Overrides, SceneDesc};
@@ -317,11 +318,15 @@ fn build_integrator(
     let integrator = match e.ty.as_str() {
         "photon" => Integrator::Photon(super::photon::photon_settings(&e, max_depth)?),
         "bdpt" => Integrator::Bdpt(bdpt_settings(&e, max_depth)?),
+        "vcm" => Integrator::Vcm(vcm_settings(&e, max_depth)?),
         name => Integrator::from_name(name, max_depth).expect("a checked integrator name"),
     };
     let mut known = vec!["maxdepth"];
     if e.ty == "bdpt" {
         known.extend(crate::integrator::bdpt::PARAMS.iter().map(|p| p.name));
+    }
+    if e.ty == "vcm" {
+        known.extend(crate::integrator::vcm::PARAMS.iter().map(|p| p.name));
     }
     if e.ty == "photon" {
         known.extend(super::photon::names());
@@ -372,6 +377,30 @@ fn bdpt_settings(e: &Entity, max_depth: u32) -> Result<BdptSettings, Diagnostic>
                 ))
             }
         }
+    }
+    Ok(st)
+}
+
+/// `vcm`'s settings: the first radius (0: automatic) and the sequence's `a`.
+fn vcm_settings(e: &Entity, max_depth: u32) -> Result<VcmSettings, Diagnostic> {
+    let p = &e.params;
+    let mut st = VcmSettings::new(max_depth);
+    st.initial_radius = p.get_float("initialradius", st.initial_radius)?;
+    st.shrink = p.get_float("shrink", st.shrink)?;
+    let bad = |name: &str, what: &str, v: f32| -> Result<(), Diagnostic> {
+        let loc = p
+            .loc_of(name)
+            .expect("a value read from the file or a flag");
+        Err(Diagnostic::error(
+            &loc,
+            format!("`{name}` must be {what}, found {v}"),
+        ))
+    };
+    if !(st.initial_radius >= 0.0 && st.initial_radius.is_finite()) {
+        bad("initialradius", "a finite number >= 0", st.initial_radius)?;
+    }
+    if !(st.shrink > 0.0 && st.shrink <= 1.0) {
+        bad("shrink", "in (0, 1]", st.shrink)?;
     }
     Ok(st)
 }

@@ -17,9 +17,9 @@
 //! leaves its contributions unweighted: each strategy alone is then an
 //! unbiased estimate of the light over paths of its depth.
 
-mod mis;
-mod vertex;
-mod walk;
+pub(crate) mod mis;
+pub(crate) mod vertex;
+pub(crate) mod walk;
 
 use super::driver::SampleCx;
 use super::lighting::{escaped_mis, shadow_ray};
@@ -100,10 +100,39 @@ pub fn li(
         let c = Connect {
             scene,
             st,
+            eta: 0.0,
             margin,
             light,
             camera,
         };
+        c.all(escape, sampler, scale, cx)
+    })
+}
+
+/// What the connections of one sample share: the two subpaths and, with
+/// vertex merging (`vcm`), its `eta` in the MIS weights (0: bdpt).
+pub(crate) struct Connect<'a> {
+    pub scene: &'a Scene,
+    pub st: &'a BdptSettings,
+    pub eta: f32,
+    pub margin: Vec2,
+    pub light: &'a [Vertex],
+    pub camera: &'a [Vertex],
+}
+
+impl Connect<'_> {
+    /// Every strategy: the radiance of those with `t >= 2` and of the
+    /// camera subpath's `escape`; those with `t = 1` splat through `cx`,
+    /// scaled by `scale`.
+    pub fn all(
+        &self,
+        escape: Option<walk::Escape>,
+        sampler: &mut Sampler,
+        scale: f32,
+        cx: &mut SampleCx,
+    ) -> Rgb {
+        let (st, camera, light) = (self.st, self.camera, self.light);
+        let depth = st.max_depth as usize;
         let mut l = Rgb::BLACK;
         // `s = 1` samples its own light point: it runs also when the light
         // subpath is empty (a light at infinity was chosen for it).
@@ -121,41 +150,30 @@ pub fn li(
                         if !st.wants(s, t) {
                             continue;
                         }
-                        if let Some((p, v)) = c.to_camera(s, u, cx) {
+                        if let Some((p, v)) = self.to_camera(s, u, cx) {
                             cx.splat_at(p, v * scale);
                         }
                     }
                     (1, _) => {
                         let (ul, u) = (sampler.get_1d(), sampler.get_2d());
                         if st.wants(s, t) {
-                            l += c.light_sample(t, ul, u, cx);
+                            l += self.light_sample(t, ul, u, cx);
                         }
                     }
                     _ if !st.wants(s, t) => {}
-                    (0, _) => l += c.emitted(t),
-                    _ => l += c.join(s, t, cx),
+                    (0, _) => l += self.emitted(t),
+                    _ => l += self.join(s, t, cx),
                 }
             }
         }
         if let Some(e) = escape.filter(|_| st.wants(0, camera.len() + 1)) {
             let last = camera.last().expect("the camera vertex");
             let fully = e.specular || !st.mis;
-            l += last.beta * escaped_mis(scene, &e.ray, last.p, e.pdf, fully);
+            l += last.beta * escaped_mis(self.scene, &e.ray, last.p, e.pdf, fully);
         }
         l
-    })
-}
+    }
 
-/// What the connections of one sample share.
-struct Connect<'a> {
-    scene: &'a Scene,
-    st: &'a BdptSettings,
-    margin: Vec2,
-    light: &'a [Vertex],
-    camera: &'a [Vertex],
-}
-
-impl Connect<'_> {
     fn weight(&self, s: usize, t: usize, sampled: Option<&Vertex>) -> f32 {
         if !self.st.mis {
             return 1.0;
@@ -168,6 +186,7 @@ impl Connect<'_> {
             s,
             t,
             sampled,
+            self.eta,
         )
     }
 
