@@ -6,10 +6,12 @@
 //! connection that ends there times `eta = pi r^2 N`, `N` the light
 //! subpaths per pass).
 //!
-//! Each pass traces one light subpath per camera sample (`store.rs`):
-//! camera sample `k` of the pass connects to subpath `k` as in `bdpt`, and
-//! merges at each of its non-delta vertices with the vertices of all of
-//! them. The radius shrinks from pass to pass as Knaus and Zwicker's
+//! Each pass traces one light subpath per camera sample of the whole film
+//! (`store.rs`): camera sample `k` of the pass connects to subpath `k` as
+//! in `bdpt`, and merges at each of its non-delta vertices with the
+//! vertices of all of them. A crop renders its pixels with the whole
+//! film's light subpaths, so that its estimate (radius, `eta`, weights) is
+//! the full render's; only the subpaths paired with its samples splat. The radius shrinks from pass to pass as Knaus and Zwicker's
 //! sequence `r_{i+1}^2 = r_i^2 (i + a) / (i + 1)` (`shrink` = `a`, 0.75 as
 //! in the paper), so the merges' bias and variance both vanish: the
 //! estimate is consistent. Only one pass's light subpaths are ever held.
@@ -27,7 +29,6 @@ pub mod store;
 use super::bdpt::{self, BdptSettings};
 use super::driver::{PassReport, SampleCx, Start};
 use super::photon::progressive::{iteration_seed, next_radius2};
-use crate::film::PixelBounds;
 use crate::geometry::Ray;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler, Vec2, PI};
@@ -88,7 +89,8 @@ pub struct VcmRun<'a> {
     /// The first pass's radius.
     r1: f32,
     seed: u64,
-    crop: PixelBounds,
+    /// The film's full resolution.
+    film: (u32, u32),
     per_pass: u32,
     /// `t = 1` splats' scale (as `bdpt`'s).
     scale: f32,
@@ -122,7 +124,7 @@ impl<'a> VcmRun<'a> {
             shrink: st.shrink as f64,
             r1,
             seed: start.seed,
-            crop: start.crop,
+            film: scene.camera.resolution,
             per_pass: start.spp_per_pass.max(1),
             scale,
             iteration,
@@ -145,7 +147,7 @@ impl<'a> VcmRun<'a> {
     /// Traces the pass's light subpaths.
     pub fn before_pass(&mut self, cancel: &AtomicBool) -> bool {
         let t0 = Instant::now();
-        let n = self.crop.area() as usize * self.per_pass as usize;
+        let n = self.film.0 as usize * self.film.1 as usize * self.per_pass as usize;
         let seed = iteration_seed(self.seed ^ VCM_STREAMS, self.iteration);
         let max_verts = self.bdpt.max_depth as usize + 1;
         let Some(paths) = LightPaths::trace(self.scene, n, max_verts, seed, cancel) else {
@@ -162,8 +164,7 @@ impl<'a> VcmRun<'a> {
     /// light subpath and merges with all.
     pub fn li(&self, ray: Ray, sampler: &mut Sampler, cx: &mut SampleCx) -> Rgb {
         let (x, y) = cx.pixel;
-        let pixel =
-            (y - self.crop.y0) as usize * self.crop.width() as usize + (x - self.crop.x0) as usize;
+        let pixel = y as usize * self.film.0 as usize + x as usize;
         let k = pixel * self.per_pass as usize + (cx.index % self.per_pass) as usize;
         let light = self.paths.path(k);
         CAMERA.with(|cell| {
