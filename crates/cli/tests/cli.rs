@@ -175,6 +175,58 @@ fn bdpt_strategy_flag_renders_one_strategy_or_is_a_located_error() {
     assert!(!d.join("t.exr").exists());
 }
 
+/// `--initial-radius` and `--shrink` are one flag each for the two
+/// integrators that read them (`photon`, `vcm`): both render with them,
+/// and a bad value is an error at the flag.
+#[test]
+fn shared_radius_flags_reach_photon_and_vcm() {
+    let d = temp_dir("cli", "vcm");
+    for integrator in ["vcm", "photon"] {
+        let out = format!("{integrator}.exr");
+        let o = lumis(
+            &d,
+            &[
+                "render",
+                "--integrator",
+                integrator,
+                "--resolution",
+                "16x16",
+                "--spp",
+                "2",
+                "--initial-radius",
+                "0.05",
+                "--shrink",
+                "0.6",
+                "-o",
+                &out,
+            ],
+        );
+        assert!(o.status.success(), "{integrator}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("unknown parameter"), "{}", stderr(&o));
+        assert!(d.join(&out).exists());
+    }
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--integrator",
+            "vcm",
+            "--resolution",
+            "16x16",
+            "--spp",
+            "2",
+            "--shrink",
+            "2",
+            "-o",
+            "bad.exr",
+        ],
+    );
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("--shrink:1:") && e.contains("(0, 1]"), "{e}");
+    assert!(!d.join("bad.exr").exists());
+}
+
 #[test]
 fn interrupt_writes_the_image_so_far_with_its_sample_count() {
     let d = temp_dir("cli", "sigint");

@@ -10,9 +10,7 @@
 mod common;
 
 use common::*;
-use lumis_render::image_io::read_image;
 use lumis_render::load::{load_path, Overrides};
-use std::path::PathBuf;
 
 #[test]
 fn furnace_converges_to_le_sum_of_albedo_powers_with_pbrts_maxdepth() {
@@ -77,24 +75,24 @@ fn cornell_box_agrees_with_path() {
     }
 }
 
-/// The spot light's focused caustic through a glass sphere (`path` cannot
-/// see it) against the light tracer's committed 262k-spp reference of
-/// the region (`lighttracer.rs`).
+/// Delta lights' caustics, which `path` cannot see, against the light
+/// tracer's committed 262k-spp references (`lighttracer.rs`): the spot
+/// light's focused through the glass sphere (its region), and the point
+/// light's off the silver ring (the whole image where the light tracer
+/// sees: not where the ring shows the camera).
 #[test]
-fn spot_light_caustic_agrees_with_the_light_tracer() {
-    let r = read_image(&test_data("spot_glass_lt_mean.exr")).expect("committed reference");
+fn delta_light_caustics_agree_with_the_light_tracer() {
     let mut ov = Overrides::default();
-    ov.crop_from([0.453125, 0.546875, 0.640625, 0.703125], "test")
-        .integrator("bdpt");
-    let scene =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/caustics/spot-glass.pbrt");
-    let l = load_path(&scene, &ov).unwrap();
+    ov.crop_from(SPOT_CROP, "test").integrator("bdpt");
+    let l = load_path(&caustic_scene("spot-glass"), &ov).unwrap();
     assert_close(
-        "spot-glass caustic",
+        "spot-glass",
         over_seeds(&l, 1024, 0..8),
-        r.data.iter().map(|&v| v as f64).sum::<f64>() / r.data.len() as f64,
+        reference_mean("spot_glass_lt_mean.exr"),
         0.0,
     );
+    let (m, r) = ring_lit_means("bdpt", &[], 64, 0..8);
+    assert_close("ring-point, lit pixels", m, r, 0.0);
 }
 
 /// A small all-diffuse room (so that every strategy can make every path)

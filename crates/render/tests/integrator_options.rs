@@ -73,6 +73,46 @@ fn bdpt_strategy_out_of_range_is_a_located_error() {
 }
 
 #[test]
+fn vcm_reads_its_radius_and_shrink() {
+    let l = load(
+        r#"Integrator "vcm" "integer maxdepth" 7 "float initialradius" 0.02 "float shrink" 0.5"#,
+        &Overrides::default(),
+    );
+    let mut st = lumis_render::integrator::vcm::VcmSettings::new(7);
+    st.initial_radius = 0.02;
+    st.shrink = 0.5;
+    assert_eq!(l.options.integrator, Integrator::Vcm(st));
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+    assert_eq!(
+        Integrator::from_name("vcm", 5),
+        Some(Integrator::Vcm(
+            lumis_render::integrator::vcm::VcmSettings::new(5)
+        ))
+    );
+}
+
+/// `shrink` must be in (0, 1] and `initialradius` at least 0.
+#[test]
+fn vcm_bad_shrink_or_radius_is_a_located_error() {
+    for (param, what) in [
+        (r#""float shrink" 0"#, "`shrink` must be in (0, 1]"),
+        (r#""float shrink" 1.5"#, "`shrink` must be in (0, 1]"),
+        (
+            r#""float initialradius" -1"#,
+            "`initialradius` must be a finite number >= 0",
+        ),
+    ] {
+        let text = format!("Integrator \"vcm\" {param}\nCamera \"perspective\"\nWorldBegin\n");
+        let e = match load_text(&text, "s.pbrt", Path::new("."), &Overrides::default()) {
+            Ok(_) => panic!("{param}: accepted"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains("s.pbrt:1:"), "{e}");
+        assert!(e.contains(what), "{e}");
+    }
+}
+
+#[test]
 fn pbrt_lightpath_is_the_light_tracer() {
     let l = load(
         r#"Integrator "lightpath" "integer maxdepth" 4"#,

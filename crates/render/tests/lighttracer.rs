@@ -148,9 +148,6 @@ fn same_bits_on_any_thread_count() {
     assert_same_bits_on_one_and_two_threads("lighttracer");
 }
 
-/// The focused caustic of `scenes/caustics/spot-glass.pbrt` (a spot light
-/// through a glass sphere): pixels 58..70 x 82..90 of 128 x 128.
-const SPOT_CROP: [f32; 4] = [0.453125, 0.546875, 0.640625, 0.703125];
 const SPOT_REF_SPP: u32 = 262_144;
 
 fn spot_glass(integrator: &str) -> Overrides {
@@ -160,25 +157,33 @@ fn spot_glass(integrator: &str) -> Overrides {
 }
 
 fn spot_scene() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/caustics/spot-glass.pbrt")
+    caustic_scene("spot-glass")
 }
 
 #[test]
 #[ignore = "writes the committed reference; run by hand"]
 fn make_reference() {
     let l = load_path(&spot_scene(), &spot_glass("lighttracer")).unwrap();
-    let out = render_loaded(&l, SPOT_REF_SPP, 2024, 0);
-    let mut img = RgbImage::new(out.film.width(), out.film.height(), out.film.mean_image());
+    let film = render_loaded(&l, SPOT_REF_SPP, 2024, 0).film;
+    write_reference(
+        film,
+        SPOT_REF_SPP,
+        "make_reference",
+        "spot_glass_lt_mean.exr",
+    );
+}
+
+fn write_reference(film: lumis_render::film::Film, spp: u32, test: &str, out: &str) {
+    let mut img = RgbImage::new(film.width(), film.height(), film.mean_image());
     img.metadata = vec![
-        ("lumis:spp".into(), SPOT_REF_SPP.to_string()),
+        ("lumis:spp".into(), spp.to_string()),
         ("lumis:integrator".into(), "lighttracer".into()),
         (
             "lumis:command".into(),
-            "cargo test --release -p lumis-render --test lighttracer -- --ignored make_reference"
-                .into(),
+            format!("cargo test --release -p lumis-render --test lighttracer -- --ignored {test}"),
         ),
     ];
-    write_image(&test_data("spot_glass_lt_mean.exr"), &img, 0.0).unwrap();
+    write_image(&test_data(out), &img, 0.0).unwrap();
 }
 
 /// Progressive `photon` against the light tracer's reference on the spot

@@ -83,6 +83,13 @@ fn bdpt_resume_is_bit_identical() {
     resume_equals_uninterrupted("bdpt", 6, 2);
 }
 
+/// `vcm`'s state is its pass count (the radius and the light subpaths'
+/// streams follow from it).
+#[test]
+fn vcm_resume_is_bit_identical() {
+    resume_equals_uninterrupted("vcm", 6, 2);
+}
+
 #[test]
 fn injected_nan_is_dropped_counted_and_located() {
     let l = scene("path");

@@ -204,6 +204,64 @@ pub fn test_scene(name: &str) -> PathBuf {
         .join(format!("{name}.pbrt"))
 }
 
+/// `scenes/caustics/<name>.pbrt` (the caustic study's scenes).
+pub fn caustic_scene(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/caustics")
+        .join(format!("{name}.pbrt"))
+}
+
+/// `scenes/caustics/ring-point.pbrt` (the silver ring's caustic of a
+/// point light, 128 x 128) by `integrator`: the mean over seeds of each
+/// render's mean over the pixels where the committed 32k-spp light-tracer
+/// reference (`scenes/caustics/ref/ring-point-lt.exr`) is a full estimate
+/// (lit, as `lumis compare --lit`: not where the ring or its edge shows),
+/// with its standard error; and the reference's mean over the same
+/// pixels. `params`: integrator parameters (declaration, value).
+pub fn ring_lit_means(
+    integrator: &str,
+    params: &[(&str, &str)],
+    spp: u32,
+    seeds: std::ops::Range<u64>,
+) -> ((f64, f64), f64) {
+    let path = caustic_scene("ring-point").with_file_name("ref/ring-point-lt.exr");
+    let r = lumis_render::image_io::read_image(&path).expect("committed reference");
+    let lit: Vec<usize> = (0..r.height)
+        .flat_map(|y| (0..r.width).map(move |x| (x, y)))
+        .filter(|&(x, y)| lumis_render::metrics::lit_interior(&r, x, y))
+        .map(|(x, y)| (y * r.width + x) as usize)
+        .collect();
+    assert!(lit.len() > 10_000, "{} lit pixels", lit.len());
+    let mean = |img: &[f32]| {
+        let s: f64 = lit
+            .iter()
+            .map(|&i| (0..3).map(|c| img[3 * i + c] as f64).sum::<f64>())
+            .sum();
+        s / (3 * lit.len()) as f64
+    };
+    let mut ov = Overrides::default();
+    ov.integrator(integrator);
+    for (decl, value) in params {
+        ov.integrator_param(decl, value);
+    }
+    let l = lumis_render::load::load_path(&caustic_scene("ring-point"), &ov).unwrap();
+    let v: Vec<f64> = seeds
+        .map(|s| mean(&render_loaded(&l, spp, s, 0).film.mean_image()))
+        .collect();
+    (sample_mean_and_se(&v), mean(&r.data))
+}
+
+/// The spot light's focused caustic through the glass sphere of
+/// `scenes/caustics/spot-glass.pbrt`: pixels 58..70 x 82..90 of 128 x 128.
+pub const SPOT_CROP: [f32; 4] = [0.453125, 0.546875, 0.640625, 0.703125];
+
+/// The mean over pixels and channels of a committed reference image
+/// (`tests/data/<name>`).
+pub fn reference_mean(name: &str) -> f64 {
+    let r = lumis_render::image_io::read_image(&test_data(name)).expect("committed reference");
+    r.data.iter().map(|&v| v as f64).sum::<f64>() / r.data.len() as f64
+}
+
 /// `tests/data/<name>` (committed references).
 pub fn test_data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
