@@ -2,7 +2,8 @@
 //! strategy) against what is known: the furnace's `Le sum a^k` with pbrt's
 //! `maxdepth`, `path`'s committed references and images where `path` is
 //! exact (area lights, an environment light), and the light tracer's
-//! reference on a spot light's caustic, which `path` cannot render. Its
+//! references on a spot light's and a point light's caustics, which `path`
+//! cannot render (these checks are shared with `vcm.rs`: `common/bidir.rs`). Its
 //! MIS: every strategy rendered alone (weighted) sums to the full image,
 //! and strategies of one depth rendered alone and unweighted estimate the
 //! same light. Same bits on any thread count.
@@ -10,89 +11,31 @@
 mod common;
 
 use common::*;
-use lumis_render::load::{load_path, Overrides};
 
 #[test]
 fn furnace_converges_to_le_sum_of_albedo_powers_with_pbrts_maxdepth() {
-    for (a, le, d) in [
-        (0.5f32, 0.5f32, 0u32),
-        (0.5, 0.5, 1),
-        (0.5, 0.5, 2),
-        (0.5, 0.5, 12),
-        (0.8, 0.2, 16),
-    ] {
-        let expected: f64 = (0..=d).map(|k| le as f64 * (a as f64).powi(k as i32)).sum();
-        let l = load(&emitting_furnace(a, le, "bdpt", d), &Default::default());
-        assert_close(
-            &format!("albedo {a}, maxdepth {d}"),
-            over_seeds(&l, 16, 0..8),
-            expected,
-            0.0,
-        );
-    }
+    bidir::emitting_furnace_sums("bdpt", &[]);
 }
 
-/// The caustic regions of the glass sphere over a diffuse and over a rough
-/// aluminium floor (small area light) against `path`'s committed
-/// million-sample references.
 #[test]
 fn caustic_regions_agree_with_path() {
-    for name in ["caustic_sphere", "caustic_sphere_glossy"] {
-        let mut ov = Overrides::default();
-        ov.crop_from(CAUSTIC_CROP, "test").integrator("bdpt");
-        let l = load_path(&test_scene(name), &ov).unwrap();
-        let (r, r_se) = caustic_reference(name);
-        assert_close(name, over_seeds(&l, 512, 0..8), r, r_se);
-    }
+    bidir::caustic_regions_agree_with_path("bdpt", 512);
 }
 
-/// The white furnace: a white diffuse sphere under a uniform environment
-/// of radiance 1 is radiance 1 everywhere (the environment reached by light
-/// samples and escaped rays).
+/// The environment is reached by light samples and escaped rays only.
 #[test]
 fn white_furnace_is_one_under_an_environment_light() {
-    let l = load(
-        &white_furnace("bdpt", r#"Material "diffuse" "rgb reflectance" [ 1 1 1 ]"#).replace(
-            r#""integer maxdepth" [ 300 ]"#,
-            r#""integer maxdepth" [ 40 ]"#,
-        ),
-        &Default::default(),
-    );
-    // 40 bounces of albedo 1: what is left beyond them is nil for a convex
-    // sphere (light leaves it after one bounce).
-    assert_close("white furnace", over_seeds(&l, 16, 0..8), 1.0, 0.0);
+    bidir::white_furnace_is_one("bdpt");
 }
 
-/// Bitterli's Cornell box: the whole image and its channels against `path`.
 #[test]
 fn cornell_box_agrees_with_path() {
-    let (Some(b), Some(p)) = (cornell_box("bdpt", 256, 32), cornell_box("path", 1024, 32)) else {
-        return;
-    };
-    for (c, r) in channel_ratios(&b, &p).into_iter().enumerate() {
-        eprintln!("channel {c}: bdpt / path {r:.4}");
-        assert!((r - 1.0).abs() < 0.01, "channel {c}: {r:.4}");
-    }
+    bidir::cornell_box_agrees_with_path("bdpt");
 }
 
-/// Delta lights' caustics, which `path` cannot see, against the light
-/// tracer's committed 262k-spp references (`lighttracer.rs`): the spot
-/// light's focused through the glass sphere (its region), and the point
-/// light's off the silver ring (the whole image where the light tracer
-/// sees: not where the ring shows the camera).
 #[test]
 fn delta_light_caustics_agree_with_the_light_tracer() {
-    let mut ov = Overrides::default();
-    ov.crop_from(SPOT_CROP, "test").integrator("bdpt");
-    let l = load_path(&caustic_scene("spot-glass"), &ov).unwrap();
-    assert_close(
-        "spot-glass",
-        over_seeds(&l, 1024, 0..8),
-        reference_mean("spot_glass_lt_mean.exr"),
-        0.0,
-    );
-    let (m, r) = ring_lit_means("bdpt", &[], 64, 0..8);
-    assert_close("ring-point, lit pixels", m, r, 0.0);
+    bidir::delta_light_caustics_agree_with_the_light_tracer("bdpt", 1024);
 }
 
 /// A small all-diffuse room (so that every strategy can make every path)

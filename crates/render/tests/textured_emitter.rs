@@ -1,4 +1,4 @@
-//! A textured area emitter rendered by `path` and `photon`, against analytic
+//! A textured area emitter rendered by `path`, `photon`, `bdpt` and `vcm`, against analytic
 //! and numeric integrals: a quad at z = 1 facing down, emitting a two-colour
 //! 2x1 image (bilinear: colour `A` up to u = 1/4, `B` from u = 3/4, linear
 //! between), seen directly from below and lighting a diffuse floor at z = 0.
@@ -83,44 +83,107 @@ AttributeEnd
 
 /// Z-scores of the left and right image halves against `expected(c, x, y)`
 /// averaged over each pixel's footprint on the plane `z = plane`.
-fn halves(l: &LoadedScene, film: &Film, plane: f32, expected: impl Fn(usize, f64, f64) -> f64) {
+/// Each pixel's expected value (channel-interleaved), integrated over its
+/// footprint on the plane `z = plane`.
+fn expected_image(
+    l: &LoadedScene,
+    plane: f32,
+    expected: impl Fn(usize, f64, f64) -> f64,
+) -> Vec<f64> {
     let cam = &l.scene.camera;
     let k = 4;
-    for half in 0..2 {
-        let (mut diff, mut var, mut sum_exp) = (0.0, 0.0, 0.0);
-        for py in 0..RES {
-            for px in half * RES / 2..(half + 1) * RES / 2 {
-                let pixel = &film.pixels[(py * RES + px) as usize];
-                let v = pixel.variance_of_mean();
-                for c in 0..3 {
-                    let mut e = 0.0;
-                    for a in 0..k {
-                        for b in 0..k {
-                            let pf = Vec2::new(
-                                px as f32 + (a as f32 + 0.5) / k as f32,
-                                py as f32 + (b as f32 + 0.5) / k as f32,
-                            );
-                            let r = cam.generate_ray(pf, Vec2::splat(0.5));
-                            let t = (plane - r.o.z) / r.d.z;
-                            let p: Vec3 = r.o + r.d * t;
-                            e += expected(c, p.x as f64, p.y as f64) / (k * k) as f64;
-                        }
+    let mut out = vec![0.0; (3 * RES * RES) as usize];
+    for py in 0..RES {
+        for px in 0..RES {
+            for c in 0..3 {
+                let mut e = 0.0;
+                for a in 0..k {
+                    for b in 0..k {
+                        let pf = Vec2::new(
+                            px as f32 + (a as f32 + 0.5) / k as f32,
+                            py as f32 + (b as f32 + 0.5) / k as f32,
+                        );
+                        let r = cam.generate_ray(pf, Vec2::splat(0.5));
+                        let t = (plane - r.o.z) / r.d.z;
+                        let p: Vec3 = r.o + r.d * t;
+                        e += expected(c, p.x as f64, p.y as f64) / (k * k) as f64;
                     }
-                    diff += pixel.mean[c] - e;
-                    var += v[c] as f64;
-                    sum_exp += e;
                 }
+                out[3 * (py * RES + px) as usize + c] = e;
             }
         }
-        let se = var.sqrt().max(1e-5 * sum_exp);
-        let z = diff / se;
-        eprintln!(
-            "half {half}: rendered / expected {:.5}, z {z:+.2} (relative se {:.2e})",
-            (sum_exp + diff) / sum_exp,
-            se / sum_exp
-        );
-        assert!(z.abs() < 4.5, "half {half}: off by {z:.1} standard errors");
-        assert!(se < 0.005 * sum_exp, "half {half}: too noisy to see 1%");
+    }
+    out
+}
+
+/// Whether pixel index `i` (channel-interleaved) is in image half `half`.
+fn in_half(i: usize, half: u32) -> bool {
+    let px = (i / 3) as u32 % RES;
+    px / (RES / 2) == half
+}
+
+/// Z-test of each image half's sum against its expected sum, `diff` and
+/// `var` the half's rendered-minus-expected sum and its variance.
+fn z_test(half: u32, diff: f64, var: f64, sum_exp: f64) {
+    let se = var.sqrt().max(1e-5 * sum_exp);
+    let z = diff / se;
+    eprintln!(
+        "half {half}: rendered / expected {:.5}, z {z:+.2} (relative se {:.2e})",
+        (sum_exp + diff) / sum_exp,
+        se / sum_exp
+    );
+    assert!(z.abs() < 4.5, "half {half}: off by {z:.1} standard errors");
+    assert!(se < 0.005 * sum_exp, "half {half}: too noisy to see 1%");
+}
+
+/// The halves against the pixels' own variance (integrators whose samples
+/// stay in their pixel).
+fn halves(l: &LoadedScene, film: &Film, plane: f32, expected: impl Fn(usize, f64, f64) -> f64) {
+    let e = expected_image(l, plane, expected);
+    for half in 0..2 {
+        let (mut diff, mut var, mut sum_exp) = (0.0, 0.0, 0.0);
+        for (i, &ei) in e.iter().enumerate().filter(|(i, _)| in_half(*i, half)) {
+            let pixel = &film.pixels[i / 3];
+            diff += pixel.mean[i % 3] - ei;
+            var += pixel.variance_of_mean()[i % 3] as f64;
+            sum_exp += ei;
+        }
+        z_test(half, diff, var, sum_exp);
+    }
+}
+
+/// The halves over independent seeds (integrators that splat: their
+/// pixels share light paths), `spp` each.
+fn halves_over_seeds(
+    l: &LoadedScene,
+    spp: u32,
+    seeds: std::ops::Range<u64>,
+    plane: f32,
+    expected: impl Fn(usize, f64, f64) -> f64,
+) {
+    let e = expected_image(l, plane, expected);
+    let images: Vec<Vec<f32>> = seeds
+        .map(|s| render_loaded(l, spp, s, 0).film.mean_image())
+        .collect();
+    for half in 0..2 {
+        let sums: Vec<f64> = images
+            .iter()
+            .map(|img| {
+                img.iter()
+                    .enumerate()
+                    .filter(|(i, _)| in_half(*i, half))
+                    .map(|(i, &v)| v as f64 - e[i])
+                    .sum()
+            })
+            .collect();
+        let (diff, se) = sample_mean_and_se(&sums);
+        let sum_exp: f64 = e
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| in_half(*i, half))
+            .map(|(_, &v)| v)
+            .sum();
+        z_test(half, diff, se * se, sum_exp);
     }
 }
 
@@ -153,6 +216,25 @@ fn textured_emitter_lights_a_diffuse_floor() {
         let out = render_loaded(&l, spp, 5, 0);
         assert_eq!(out.bad_samples, 0);
         halves(&l, &out.film, 0.0, |c, x, y| {
+            ALBEDO / PI as f64 * irradiance(c, x, y)
+        });
+    }
+}
+
+/// The bidirectional integrators: the floor lit by the textured emitter
+/// through light samples, camera connections of light paths (splatted)
+/// and, for `vcm`, merges; 8 seeds.
+#[test]
+fn textured_emitter_lights_a_diffuse_floor_bidirectionally() {
+    for (integrator, spp) in [("bdpt", 16), ("vcm", 16)] {
+        eprintln!("{integrator}:");
+        let l = scene(
+            integrator,
+            spp,
+            "LookAt 0 0 0.5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]",
+            true,
+        );
+        halves_over_seeds(&l, spp, 0..8, 0.0, |c, x, y| {
             ALBEDO / PI as f64 * irradiance(c, x, y)
         });
     }

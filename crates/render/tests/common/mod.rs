@@ -1,8 +1,10 @@
 //! Helpers shared by the integration tests of lumis-render: scene text,
 //! loading and rendering, image statistics; chi-square tests of sampling
-//! routines (`chi2`) and environment maps written to disk (`envmap`).
+//! routines (`chi2`), environment maps written to disk (`envmap`) and the
+//! checks the bidirectional integrators share (`bidir`).
 #![allow(dead_code)]
 
+pub mod bidir;
 pub mod chi2;
 pub mod envmap;
 
@@ -211,19 +213,11 @@ pub fn caustic_scene(name: &str) -> PathBuf {
         .join(format!("{name}.pbrt"))
 }
 
-/// `scenes/caustics/ring-point.pbrt` (the silver ring's caustic of a
-/// point light, 128 x 128) by `integrator`: the mean over seeds of each
-/// render's mean over the pixels where the committed 32k-spp light-tracer
-/// reference (`scenes/caustics/ref/ring-point-lt.exr`) is a full estimate
-/// (lit, as `lumis compare --lit`: not where the ring or its edge shows),
-/// with its standard error; and the reference's mean over the same
-/// pixels. `params`: integrator parameters (declaration, value).
-pub fn ring_lit_means(
-    integrator: &str,
-    params: &[(&str, &str)],
-    spp: u32,
-    seeds: std::ops::Range<u64>,
-) -> ((f64, f64), f64) {
+/// The committed 32k-spp light-tracer reference of
+/// `scenes/caustics/ring-point.pbrt` and the indices of its pixels where it
+/// is a full estimate (lit, as `lumis compare --lit`: not where the ring or
+/// its edge shows the camera).
+pub fn ring_lit_reference() -> (lumis_render::image_io::RgbImage, Vec<usize>) {
     let path = caustic_scene("ring-point").with_file_name("ref/ring-point-lt.exr");
     let r = lumis_render::image_io::read_image(&path).expect("committed reference");
     let lit: Vec<usize> = (0..r.height)
@@ -232,6 +226,22 @@ pub fn ring_lit_means(
         .map(|(x, y)| (y * r.width + x) as usize)
         .collect();
     assert!(lit.len() > 10_000, "{} lit pixels", lit.len());
+    (r, lit)
+}
+
+/// `scenes/caustics/ring-point.pbrt` (the silver ring's caustic of a
+/// point light, 128 x 128) by `integrator`: the mean over seeds of each
+/// render's mean over the pixels where the committed 32k-spp light-tracer
+/// reference (`scenes/caustics/ref/ring-point-lt.exr`) is a full estimate
+/// (lit, as `lumis compare --lit`: not where the ring or its edge shows),
+/// with its standard error; and the reference's mean over the same
+/// pixels.
+pub fn ring_lit_means(
+    integrator: &str,
+    spp: u32,
+    seeds: std::ops::Range<u64>,
+) -> ((f64, f64), f64) {
+    let (r, lit) = ring_lit_reference();
     let mean = |img: &[f32]| {
         let s: f64 = lit
             .iter()
@@ -241,9 +251,6 @@ pub fn ring_lit_means(
     };
     let mut ov = Overrides::default();
     ov.integrator(integrator);
-    for (decl, value) in params {
-        ov.integrator_param(decl, value);
-    }
     let l = lumis_render::load::load_path(&caustic_scene("ring-point"), &ov).unwrap();
     let v: Vec<f64> = seeds
         .map(|s| mean(&render_loaded(&l, spp, s, 0).film.mean_image()))
