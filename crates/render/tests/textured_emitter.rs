@@ -1,4 +1,4 @@
-//! A textured area emitter rendered by `path`, `photon`, `bdpt` and `vcm`, against analytic
+//! A textured area emitter rendered by `path`, `photon`, `lighttracer`, `bdpt` and `vcm`, against analytic
 //! and numeric integrals: a quad at z = 1 facing down, emitting a two-colour
 //! 2x1 image (bilinear: colour `A` up to u = 1/4, `B` from u = 3/4, linear
 //! between), seen directly from below and lighting a diffuse floor at z = 0.
@@ -222,11 +222,11 @@ fn textured_emitter_lights_a_diffuse_floor() {
 }
 
 /// The bidirectional integrators: the floor lit by the textured emitter
-/// through light samples, camera connections of light paths (splatted)
-/// and, for `vcm`, merges; 8 seeds.
+/// through camera connections of light paths (splatted), light samples
+/// (`bdpt`, `vcm`) and merges (`vcm`); 8 seeds.
 #[test]
 fn textured_emitter_lights_a_diffuse_floor_bidirectionally() {
-    for (integrator, spp) in [("bdpt", 16), ("vcm", 16)] {
+    for (integrator, spp) in [("lighttracer", 2048), ("bdpt", 16), ("vcm", 16)] {
         eprintln!("{integrator}:");
         let l = scene(
             integrator,

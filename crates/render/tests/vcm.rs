@@ -6,7 +6,7 @@
 //! cannot render. Merging is biased by its radius and consistent: with a
 //! radius too large on purpose, the caustic's error falls as the passes
 //! shrink it. Same bits on any thread count. (That the MIS weights of all
-//! techniques sum to one is a unit test: `src/integrator/vcm/mis_test.rs`.)
+//! techniques sum to one is `mis_weights.rs`.)
 
 mod common;
 

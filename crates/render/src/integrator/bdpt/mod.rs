@@ -17,9 +17,9 @@
 //! leaves its contributions unweighted: each strategy alone is then an
 //! unbiased estimate of the light over paths of its depth.
 
-pub(crate) mod mis;
-pub(crate) mod vertex;
-pub(crate) mod walk;
+pub mod mis;
+pub mod vertex;
+pub mod walk;
 
 use super::driver::SampleCx;
 use super::lighting::{escaped_mis, shadow_ray};

@@ -22,8 +22,6 @@
 //! caustics seen directly) the weights hand the path to them.
 
 mod merge;
-#[cfg(test)]
-mod mis_test;
 pub mod store;
 
 use super::bdpt::{self, BdptSettings};

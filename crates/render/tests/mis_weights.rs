@@ -4,14 +4,14 @@
 //! making them, the subpaths are rebuilt with the densities the random
 //! walks would have recorded.
 
-use crate::bsdf::TransportMode;
-use crate::integrator::bdpt::mis;
-use crate::integrator::bdpt::vertex::{light_origin_pdf, to_area, Kind, Vertex};
-use crate::integrator::bdpt::walk;
-use crate::integrator::RayCounts;
-use crate::load::{load_text, Overrides};
-use crate::scene::Scene;
 use lumis_math::{Sampler, SamplerKind, Vec2};
+use lumis_render::bsdf::TransportMode;
+use lumis_render::integrator::bdpt::mis;
+use lumis_render::integrator::bdpt::vertex::{light_origin_pdf, to_area, Kind, Vertex};
+use lumis_render::integrator::bdpt::walk;
+use lumis_render::integrator::RayCounts;
+use lumis_render::load::{load_text, Overrides};
+use lumis_render::scene::Scene;
 use std::path::Path;
 
 /// The subpath of `verts` (from its first vertex, a lens or light point)
