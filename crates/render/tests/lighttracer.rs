@@ -206,13 +206,7 @@ fn photon_converges_to_the_light_tracer_on_a_spot_light_caustic() {
         let (mut e, mut ratio) = (0.0, 0.0);
         for seed in [1, 2] {
             let img = render_loaded(&l, iterations, seed, 0).film.mean_image();
-            assert_eq!(img.len(), r.data.len());
-            let d: f64 = img
-                .iter()
-                .zip(&r.data)
-                .map(|(&a, &b)| (a as f64 - b as f64).powi(2))
-                .sum();
-            e += d / img.len() as f64 / 2.0;
+            e += image_mse(&img, &r.data, None) / 2.0;
             let sum = |v: &[f32]| v.iter().map(|&x| x as f64).sum::<f64>();
             ratio += sum(&img) / sum(&r.data) / 2.0;
         }
@@ -247,12 +241,7 @@ fn photon_converges_to_the_light_tracer_on_a_point_light_caustic() {
         let mut e = 0.0;
         for seed in [1, 2] {
             let img = render_loaded(&l, iterations, seed, 0).film.mean_image();
-            let d: f64 = lit
-                .iter()
-                .flat_map(|&i| 3 * i..3 * i + 3)
-                .map(|i| (img[i] as f64 - r.data[i] as f64).powi(2))
-                .sum();
-            e += d / (3 * lit.len()) as f64 / 2.0;
+            e += image_mse(&img, &r.data, Some(&lit)) / 2.0;
         }
         eprintln!("{iterations} iterations: MSE {e:.3e}");
         mse.push(e);

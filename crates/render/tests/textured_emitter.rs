@@ -203,21 +203,29 @@ fn textured_emitter_seen_directly() {
     }
 }
 
+/// The diffuse floor under the emitter, seen from above.
+fn floor_scene(integrator: &str, spp: u32) -> LoadedScene {
+    scene(
+        integrator,
+        spp,
+        "LookAt 0 0 0.5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]",
+        true,
+    )
+}
+
+/// The floor's radiance (channel `c`) at (x, y): one diffuse bounce.
+fn floor_radiance(c: usize, x: f64, y: f64) -> f64 {
+    ALBEDO / PI as f64 * irradiance(c, x, y)
+}
+
 #[test]
 fn textured_emitter_lights_a_diffuse_floor() {
     for (integrator, spp) in [("path", 64), ("photon", 16)] {
         eprintln!("{integrator}:");
-        let l = scene(
-            integrator,
-            spp,
-            "LookAt 0 0 0.5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]",
-            true,
-        );
+        let l = floor_scene(integrator, spp);
         let out = render_loaded(&l, spp, 5, 0);
         assert_eq!(out.bad_samples, 0);
-        halves(&l, &out.film, 0.0, |c, x, y| {
-            ALBEDO / PI as f64 * irradiance(c, x, y)
-        });
+        halves(&l, &out.film, 0.0, floor_radiance);
     }
 }
 
@@ -228,15 +236,8 @@ fn textured_emitter_lights_a_diffuse_floor() {
 fn textured_emitter_lights_a_diffuse_floor_bidirectionally() {
     for (integrator, spp) in [("lighttracer", 2048), ("bdpt", 16), ("vcm", 16)] {
         eprintln!("{integrator}:");
-        let l = scene(
-            integrator,
-            spp,
-            "LookAt 0 0 0.5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 60 ]",
-            true,
-        );
-        halves_over_seeds(&l, spp, 0..8, 0.0, |c, x, y| {
-            ALBEDO / PI as f64 * irradiance(c, x, y)
-        });
+        let l = floor_scene(integrator, spp);
+        halves_over_seeds(&l, spp, 0..8, 0.0, floor_radiance);
     }
 }
 

@@ -64,12 +64,7 @@ fn error_falls_as_the_radius_shrinks() {
         let mut e = 0.0;
         for seed in [1, 2] {
             let img = render_loaded(&l, spp, seed, 0).film.mean_image();
-            let d: f64 = img
-                .iter()
-                .zip(&reference.data)
-                .map(|(&a, &b)| (a as f64 - b as f64).powi(2))
-                .sum();
-            e += d / img.len() as f64 / 2.0;
+            e += image_mse(&img, &reference.data, None) / 2.0;
         }
         eprintln!("{spp} passes: MSE {e:.3e}");
         mse.push(e);

@@ -262,6 +262,20 @@ pub fn ring_lit_means(
 /// `scenes/caustics/spot-glass.pbrt`: pixels 58..70 x 82..90 of 128 x 128.
 pub const SPOT_CROP: [f32; 4] = [0.453125, 0.546875, 0.640625, 0.703125];
 
+/// Mean squared difference of two channel-interleaved images over the
+/// pixels `pixels` (all of them with `None`).
+pub fn image_mse(img: &[f32], reference: &[f32], pixels: Option<&[usize]>) -> f64 {
+    assert_eq!(img.len(), reference.len());
+    let sq = |i: usize| (img[i] as f64 - reference[i] as f64).powi(2);
+    match pixels {
+        None => (0..img.len()).map(sq).sum::<f64>() / img.len() as f64,
+        Some(p) => {
+            let d: f64 = p.iter().flat_map(|&i| 3 * i..3 * i + 3).map(sq).sum();
+            d / (3 * p.len()) as f64
+        }
+    }
+}
+
 /// The mean over pixels and channels of a committed reference image
 /// (`tests/data/<name>`).
 pub fn reference_mean(name: &str) -> f64 {

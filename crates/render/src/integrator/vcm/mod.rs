@@ -11,8 +11,8 @@
 //! in `bdpt`, and merges at each of its non-delta vertices with the
 //! vertices of all of them. A crop renders its pixels with the whole
 //! film's light subpaths, so that its estimate (radius, `eta`, weights) is
-//! the full render's; only the subpaths paired with its samples splat. The radius shrinks from pass to pass as Knaus and Zwicker's
-//! sequence `r_{i+1}^2 = r_i^2 (i + a) / (i + 1)` (`shrink` = `a`, 0.75 as
+//! the full render's; only the subpaths paired with its samples splat.
+//! The radius shrinks from pass to pass as Knaus and Zwicker's sequence `r_{i+1}^2 = r_i^2 (i + a) / (i + 1)` (`shrink` = `a`, 0.75 as
 //! in the paper), so the merges' bias and variance both vanish: the
 //! estimate is consistent. Only one pass's light subpaths are ever held.
 //!
@@ -40,7 +40,7 @@ use store::LightPaths;
 pub struct VcmSettings {
     pub max_depth: u32,
     /// The first pass's merging radius in scene units (0: one pixel's
-    /// footprint at the median distance the camera sees, `radius.rs`).
+    /// footprint at the median distance the camera sees, `merge.rs`).
     pub initial_radius: f32,
     /// `a` of the radius sequence, in (0, 1].
     pub shrink: f32,
@@ -84,16 +84,16 @@ pub struct VcmRun<'a> {
     scene: &'a Scene,
     bdpt: BdptSettings,
     shrink: f64,
-    /// The first pass's radius.
-    r1: f32,
     seed: u64,
     /// The film's full resolution.
     film: (u32, u32),
     per_pass: u32,
     /// `t = 1` splats' scale (as `bdpt`'s).
     scale: f32,
-    /// Passes done (over all runs of a resumed render).
+    /// Passes done (over all runs of a resumed render), and the squared
+    /// radius of the next.
     iteration: u64,
+    r2: f64,
     paths: LightPaths,
     radius: f32,
     eta: f32,
@@ -116,30 +116,23 @@ impl<'a> VcmRun<'a> {
         } else {
             merge::footprint_radius(scene)
         };
+        let shrink = st.shrink as f64;
+        let r2 = (0..iteration).fold((r1 as f64).powi(2), |r2, j| next_radius2(r2, j, shrink));
         VcmRun {
             scene,
             bdpt: BdptSettings::new(st.max_depth),
-            shrink: st.shrink as f64,
-            r1,
+            shrink,
             seed: start.seed,
             film: scene.camera.resolution,
             per_pass: start.spp_per_pass.max(1),
             scale,
             iteration,
+            r2,
             paths: LightPaths::default(),
             radius: 0.0,
             eta: 0.0,
             trace_time: Duration::ZERO,
         }
-    }
-
-    /// The radius of pass `i` (from 0).
-    pub fn radius(&self, i: u64) -> f32 {
-        let mut r2 = (self.r1 as f64).powi(2);
-        for j in 0..i {
-            r2 = next_radius2(r2, j, self.shrink);
-        }
-        r2.sqrt() as f32
     }
 
     /// Traces the pass's light subpaths.
@@ -152,7 +145,7 @@ impl<'a> VcmRun<'a> {
             return false;
         };
         self.paths = paths;
-        self.radius = self.radius(self.iteration);
+        self.radius = self.r2.sqrt() as f32;
         self.eta = PI * self.radius * self.radius * n as f32;
         self.trace_time = t0.elapsed();
         true
@@ -191,6 +184,7 @@ impl<'a> VcmRun<'a> {
     }
 
     pub fn after_pass(&mut self) {
+        self.r2 = next_radius2(self.r2, self.iteration, self.shrink);
         self.iteration += 1;
         self.paths = LightPaths::default();
     }
