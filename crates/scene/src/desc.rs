@@ -24,6 +24,44 @@ pub struct CameraDesc {
     pub entity: Entity,
     /// The CTM at the `Camera` directive.
     pub camera_from_world: Transform,
+    /// The medium the camera sits in: the outside medium of the
+    /// `MediumInterface` in effect at `Camera` (as pbrt-v4), if any.
+    pub medium: Option<MediumName>,
+}
+
+/// A medium named by `MediumInterface`, with where it was named (resolved
+/// against `MakeNamedMedium` when the scene is built, so media may be
+/// defined after their use, as in pbrt-v4).
+#[derive(Clone, Debug)]
+pub struct MediumName {
+    pub name: String,
+    pub loc: Loc,
+}
+
+/// `MediumInterface "inside" "outside"`: the media on either side of a
+/// shape (`None`: no medium, the empty string in pbrt-v4).
+#[derive(Clone, Debug, Default)]
+pub struct MediumInterfaceDesc {
+    pub inside: Option<MediumName>,
+    pub outside: Option<MediumName>,
+}
+
+impl MediumInterfaceDesc {
+    /// Whether crossing the shape changes the medium (otherwise rays keep
+    /// the medium they travel in, as in pbrt-v4).
+    pub fn is_transition(&self) -> bool {
+        self.inside.as_ref().map(|m| &m.name) != self.outside.as_ref().map(|m| &m.name)
+    }
+}
+
+/// `MakeNamedMedium "name" "string type" ...`: `entity.ty` is the type
+/// parameter's value.
+#[derive(Clone, Debug)]
+pub struct MediumDesc {
+    pub name: String,
+    pub entity: Entity,
+    /// The CTM at the directive: the medium's space to world.
+    pub medium_to_world: Transform,
 }
 
 #[derive(Clone, Debug)]
@@ -56,6 +94,8 @@ pub struct ShapeDesc {
     pub reverse_orientation: bool,
     pub material: MaterialRef,
     pub area_light: Option<Entity>,
+    /// The `MediumInterface` in effect at the shape.
+    pub media: MediumInterfaceDesc,
 }
 
 /// An object (`ObjectBegin "name"` ... `ObjectEnd`): shapes placed by
@@ -81,6 +121,8 @@ pub struct InstanceDesc {
 pub struct LightDesc {
     pub entity: Entity,
     pub light_to_world: Transform,
+    /// The medium the light sits in (the outside medium in effect).
+    pub medium: Option<MediumName>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -100,6 +142,8 @@ pub struct SceneDesc {
     pub objects: Vec<ObjectDesc>,
     pub instances: Vec<InstanceDesc>,
     pub lights: Vec<LightDesc>,
+    /// `MakeNamedMedium`s, in order; names are unique.
+    pub media: Vec<MediumDesc>,
     pub warnings: Vec<Diagnostic>,
     pub saw_world_begin: bool,
     /// What the scene was made of; see [`SceneDesc::inputs`].

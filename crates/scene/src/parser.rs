@@ -76,6 +76,8 @@ pub(crate) struct GraphicsState {
     pub active_end: bool,
     /// `Attribute "shape"|"light"|"material"|"medium"|"texture"` defaults.
     pub attrs: Attributes,
+    /// The `MediumInterface` in effect.
+    pub media: crate::desc::MediumInterfaceDesc,
 }
 
 /// Parameter defaults set by `Attribute`, by target.
@@ -154,6 +156,7 @@ fn parse(
             active_start: true,
             active_end: true,
             attrs: Attributes::default(),
+            media: Default::default(),
         },
         stack: Vec::new(),
         coord_systems: HashMap::new(),
@@ -413,6 +416,7 @@ impl Builder {
                 self.desc.camera = Some(crate::desc::CameraDesc {
                     entity,
                     camera_from_world: self.gs.ctm,
+                    medium: self.gs.media.outside.clone(),
                 });
             }
             "Film" | "Sampler" | "Integrator" | "PixelFilter" => {

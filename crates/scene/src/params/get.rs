@@ -144,6 +144,11 @@ impl ParamSet {
         self.get_triples(name, "point3")
     }
 
+    /// All values of an `rgb` parameter, three at a time (grids of colours).
+    pub fn get_rgbs(&self, name: &str) -> Result<Option<Vec<Vec3>>, Diagnostic> {
+        self.get_triples(name, "rgb")
+    }
+
     pub fn get_normals(&self, name: &str) -> Result<Option<Vec<Vec3>>, Diagnostic> {
         self.get_triples(name, "normal")
     }

@@ -3,7 +3,8 @@
 use super::PendingInstance;
 use super::{upgrade, with_defaults, Builder, Scope, MAX_INCLUDE_DEPTH};
 use crate::desc::{
-    Entity, LightDesc, MaterialDesc, MaterialRef, ObjectDesc, ShapeDesc, TextureDesc,
+    Entity, LightDesc, MaterialDesc, MaterialRef, MediumDesc, MediumInterfaceDesc, MediumName,
+    ObjectDesc, ShapeDesc, TextureDesc,
 };
 use crate::lexer::Token;
 use crate::loc::{Diagnostic, SourceFile};
@@ -160,6 +161,7 @@ impl Builder {
                     reverse_orientation: self.gs.reverse_orientation,
                     material: self.gs.material.clone(),
                     area_light: self.gs.area_light.clone(),
+                    media: self.gs.media.clone(),
                 };
                 match self.object {
                     None => self.desc.shapes.push(shape),
@@ -190,6 +192,7 @@ impl Builder {
                 self.desc.lights.push(LightDesc {
                     entity,
                     light_to_world: self.gs.ctm,
+                    medium: self.gs.media.outside.clone(),
                 });
             }
             "ReverseOrientation" => {
@@ -252,20 +255,10 @@ impl Builder {
                 });
             }
             "WorldEnd" => Self::no_args(dir, name, args)?, // pbrt-v3's end of scene
-            "MakeNamedMedium" => {
-                let usage =
-                    "MakeNamedMedium \"name\" \"string type\" \"homogeneous\" parameters...";
-                let (s, rest) = Self::strings(dir, name, args, 1, usage)?;
-                ParamSet::parse(rest)?;
-                self.warn_once(
-                    "media",
-                    &s[0].1,
-                    format!("participating media are not rendered yet; medium `{}` (and any other) is ignored", s[0].0),
-                );
-            }
+            "MakeNamedMedium" => self.make_named_medium(dir, name, args)?,
             "MediumInterface" => {
                 let n = args.len().min(2);
-                let (_, rest) = Self::strings(
+                let (s, rest) = Self::strings(
                     dir,
                     name,
                     args,
@@ -273,11 +266,17 @@ impl Builder {
                     "MediumInterface \"inside\" [\"outside\"]",
                 )?;
                 Self::no_args(dir, name, rest)?;
-                self.warn_once(
-                    "interface",
-                    &dir.loc,
-                    "participating media are not rendered yet; MediumInterface is ignored (here and below)",
-                );
+                let named = |(name, loc): &(String, crate::loc::Loc)| {
+                    (!name.is_empty()).then(|| MediumName {
+                        name: name.clone(),
+                        loc: loc.clone(),
+                    })
+                };
+                // One name is both sides (pbrt-v4); two are inside, outside.
+                self.gs.media = MediumInterfaceDesc {
+                    inside: named(&s[0]),
+                    outside: named(s.last().expect("one or two names")),
+                };
             }
             "Accelerator" => {
                 Self::entity(dir, name, args)?;
@@ -342,5 +341,51 @@ impl Builder {
             self.gs = gs;
         }
         result
+    }
+}
+
+impl Builder {
+    /// `MakeNamedMedium "name" "string type" "homogeneous" ...`: the type
+    /// is a parameter; names are unique (pbrt-v4 refuses a redefinition).
+    fn make_named_medium(
+        &mut self,
+        dir: &Token,
+        name: &str,
+        args: &[Token],
+    ) -> Result<(), Diagnostic> {
+        let usage = "MakeNamedMedium \"name\" \"string type\" \"homogeneous\" parameters...";
+        let (s, rest) = Self::strings(dir, name, args, 1, usage)?;
+        let (medium_name, loc) = s.into_iter().next().expect("one string");
+        let params = ParamSet::parse(rest)?;
+        let entity = with_defaults(
+            Entity {
+                ty: String::new(),
+                params,
+                loc: loc.clone(),
+            },
+            &self.gs.attrs.medium,
+        );
+        let Some(ty) = entity.params.get_opt_string("type")? else {
+            return Err(Diagnostic::error(
+                &loc,
+                format!("medium `{medium_name}` has no type: expected a \"string type\" parameter"),
+            )
+            .with_help(usage));
+        };
+        if let Some(prev) = self.desc.media.iter().find(|m| m.name == medium_name) {
+            return Err(Diagnostic::error(
+                &loc,
+                format!("medium `{medium_name}` is defined twice"),
+            )
+            .with_help(format!("first defined at {}", prev.entity.loc)));
+        }
+        let mut entity = entity;
+        entity.ty = ty;
+        self.desc.media.push(MediumDesc {
+            name: medium_name,
+            entity,
+            medium_to_world: self.gs.ctm,
+        });
+        Ok(())
     }
 }
