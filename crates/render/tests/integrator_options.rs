@@ -34,16 +34,23 @@ fn sppm_scenes_render_with_photon() {
 
 #[test]
 fn other_pbrt_integrators_fall_back_to_path() {
-    for ty in ["mlt", "volpath"] {
-        let l = load(
-            &format!(r#"Integrator "{ty}" "integer maxdepth" 4"#),
-            &Overrides::default(),
-        );
-        let i = &l.options.integrator;
-        assert_eq!(*i, Integrator::Path { max_depth: 4 }, "{ty}");
-        assert_eq!(l.warnings.len(), 1, "{ty}: {:?}", l.warnings);
-        assert!(l.warnings[0].message.contains("using `path`"));
-    }
+    let l = load(
+        r#"Integrator "mlt" "integer maxdepth" 4"#,
+        &Overrides::default(),
+    );
+    assert_eq!(l.options.integrator, Integrator::Path { max_depth: 4 });
+    assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
+    assert!(l.warnings[0].message.contains("using `path`"));
+}
+
+#[test]
+fn pbrt_volpath_is_path() {
+    let l = load(
+        r#"Integrator "volpath" "integer maxdepth" 4 "string lightsampler" "bvh" "bool regularize" false"#,
+        &Overrides::default(),
+    );
+    assert_eq!(l.options.integrator, Integrator::Path { max_depth: 4 });
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
 }
 
 #[test]

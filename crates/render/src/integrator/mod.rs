@@ -24,6 +24,7 @@ pub mod path;
 pub mod photon;
 pub mod run;
 pub mod vcm;
+pub mod volpath;
 
 pub use driver::{
     render, render_with, BadSample, Progress, RenderHooks, RenderOutcome, RenderSettings,

@@ -1,5 +1,6 @@
 //! Unbiased path tracing: next-event estimation, MIS (power heuristic)
-//! between light and BSDF sampling, Russian roulette.
+//! between light and BSDF sampling, Russian roulette. Scenes with
+//! participating media take the volumetric tracer of `volpath.rs`.
 
 use super::lighting::{emitted_mis, escaped_mis, sample_direct};
 use crate::bsdf::TransportMode;
@@ -15,6 +16,9 @@ pub fn li(
     max_depth: u32,
     rays: &mut super::RayCounts,
 ) -> Rgb {
+    if scene.has_media() {
+        return super::volpath::li(scene, ray, sampler, max_depth, rays);
+    }
     let mut l = Rgb::BLACK;
     let mut beta = Rgb::WHITE;
     let mut specular_bounce = false;

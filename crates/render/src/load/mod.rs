@@ -11,6 +11,8 @@ mod envmap;
 mod inputs;
 mod lights;
 mod material;
+mod medium;
+mod medium_presets;
 pub mod options;
 pub mod photon;
 mod shape;
@@ -99,11 +101,19 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
     let options = options::build_options(desc, overrides, &mut w)?;
     let camera = options::build_camera(desc, &options, &mut w)?;
     let mut tex = texture::build_textures(desc, &mut w)?;
-    let materials = material::build_materials(desc, &mut tex, &mut w)?;
+    let mut materials = material::build_materials(desc, &mut tex, &mut w)?;
+    let media = medium::build_media(desc, &mut w)?;
+    let camera_medium = media.id(&desc.camera.as_ref().and_then(|c| c.medium.clone()))?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
-    let (prims, instances) =
-        shape::build_shapes(desc, &materials, &mut shapes, &mut lights, &mut w)?;
+    let (prims, instances) = shape::build_shapes(
+        desc,
+        &mut materials,
+        &media,
+        &mut shapes,
+        &mut lights,
+        &mut w,
+    )?;
     lights::build_lights(desc, &mut lights, &mut w)?;
     if lights.is_empty() {
         w.push(
@@ -111,13 +121,27 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
                 .into_warning(),
         );
     }
-    // Interface surfaces only bound media, which lumis does not render yet:
-    // they cannot change the image, so they are left out (emitters stay).
+    // Interface surfaces that do not change the medium cannot change the
+    // image: they are left out (emitters stay).
+    // Media are rendered by `path` only; other integrators leave them out
+    // (with their boundaries), with a warning.
+    let render_media = !media.media.is_empty()
+        && matches!(
+            options.integrator,
+            crate::integrator::Integrator::Path { .. }
+        );
     let mut prims = prims;
     prims.retain(|p| {
+        let m = &materials.materials[p.material as usize];
         p.light != crate::scene::NO_LIGHT
-            || !materials.materials[p.material as usize].is_interface()
+            || !m.is_interface()
+            || (render_media && m.media.is_some())
     });
+    if !render_media {
+        for m in materials.materials.iter_mut() {
+            m.media = None;
+        }
+    }
     let mut scene = Scene::with_instances(
         shapes,
         prims,
@@ -126,6 +150,22 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
         lights,
         camera,
     );
+    if render_media {
+        scene.media = media.media;
+        scene.camera_medium = camera_medium;
+    } else if !media.media.is_empty() {
+        let loc = desc
+            .integrator
+            .as_ref()
+            .map_or_else(|| desc.media[0].entity.loc.clone(), |e| e.loc.clone());
+        w.push(Diagnostic::warning(
+            &loc,
+            format!(
+                "integrator `{}` does not render participating media yet (only `path` does): they are left out of this image",
+                options.integrator.name()
+            ),
+        ).with_help("render media with `--integrator path`"));
+    }
     let mut textures = tex.textures;
     textures.footprint = crate::texture::Footprint::new(&scene.camera, options.spp);
     scene.textures = textures;

@@ -258,6 +258,11 @@ fn build_integrator(
 ) -> Result<Integrator, Diagnostic> {
     let mut file = desc.integrator.clone();
     if let Some(e) = &mut file {
+        if e.ty == "volpath" {
+            // pbrt-v4's volumetric path tracer is lumis' `path`, which
+            // renders media; its light sampler choice is ignored below.
+            e.ty = "path".into();
+        }
         if !Integrator::NAMES.contains(&e.ty.as_str()) {
             let fallback = if e.ty == "sppm" {
                 // The scenes written for SPPM are caustic scenes: render them
@@ -271,7 +276,6 @@ fn build_integrator(
                 "photon"
             } else {
                 let note = match e.ty.as_str() {
-                    "volpath" => "volumes are not rendered yet",
                     "mlt" => "it is not implemented",
                     _ => "it is not a lumis integrator",
                 };

@@ -58,6 +58,10 @@ pub enum MaterialKind {
 pub struct Material {
     pub kind: MaterialKind,
     pub shading: Shading,
+    /// The media on the surface's two sides, for shapes whose
+    /// `MediumInterface` changes the medium (the loader gives each such
+    /// material and interface pair its own id); `None` elsewhere.
+    pub media: Option<crate::media::MediumInterface>,
 }
 
 impl From<MaterialKind> for Material {
@@ -65,6 +69,7 @@ impl From<MaterialKind> for Material {
         Material {
             kind,
             shading: Shading::Smooth,
+            media: None,
         }
     }
 }

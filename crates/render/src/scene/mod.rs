@@ -14,6 +14,7 @@ use crate::camera::Camera;
 use crate::geometry::{Aabb, Ray};
 use crate::light::{Light, LightSampler};
 use crate::material::Material;
+use crate::media::{Medium, MediumInterface};
 use crate::texture::Textures;
 use lumis_math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -39,6 +40,10 @@ pub struct Scene {
     /// Lights seen by rays that escape (infinite, environment).
     pub infinite_lights: Vec<u32>,
     pub camera: Camera,
+    /// Participating media, referenced by id from materials' interfaces.
+    pub media: Vec<Medium>,
+    /// The medium the camera sits in.
+    pub camera_medium: Option<u32>,
     pub bounds: Aabb,
     pub counters: RayCounters,
     /// Embree's structures when [`Scene::use_embree`] chose that backend.
@@ -121,6 +126,8 @@ impl Scene {
             light_sampler,
             infinite_lights,
             camera,
+            media: Vec::new(),
+            camera_medium: None,
             bounds,
             counters: RayCounters::default(),
             #[cfg(feature = "embree")]
@@ -175,6 +182,26 @@ impl Scene {
     /// The BSDF at a hit seen from direction `wo` (pointing away from the surface).
     pub fn bsdf(&self, hit: &Hit, wo: Vec3) -> SurfaceBsdf {
         crate::material::surface_bsdf(&self.materials, &self.textures, hit.material, &hit.geom, wo)
+    }
+
+    /// Whether any ray can travel through a medium.
+    #[inline]
+    pub fn has_media(&self) -> bool {
+        !self.media.is_empty()
+    }
+
+    /// The media on the two sides of the surface hit, if crossing it
+    /// changes the medium.
+    #[inline]
+    pub fn medium_interface(&self, hit: &Hit) -> Option<MediumInterface> {
+        self.materials[hit.material as usize].media
+    }
+
+    /// Whether the surface hit only bounds media (pbrt-v4's `interface`
+    /// material): rays cross it unchanged.
+    #[inline]
+    pub fn is_boundary(&self, hit: &Hit) -> bool {
+        self.materials[hit.material as usize].is_interface()
     }
 
     pub fn count_rays(&self, n: u64) {

@@ -35,9 +35,26 @@ pub struct BuiltMaterials {
     pub materials: Vec<Material>,
     /// Index of the default material (pbrt's diffuse 0.5), appended last.
     pub default: u32,
+    /// Copies of materials on surfaces between media, appended after the
+    /// default: (material, interface) to the copy's id.
+    with_media: std::collections::HashMap<(u32, crate::media::MediumInterface), u32>,
 }
 
 impl BuiltMaterials {
+    /// The id of material `id` on a surface between media `mi`: a copy of
+    /// it carrying the interface, made once per pair.
+    pub fn with_media(&mut self, id: u32, mi: crate::media::MediumInterface) -> u32 {
+        if let Some(&i) = self.with_media.get(&(id, mi)) {
+            return i;
+        }
+        let mut m = self.materials[id as usize].clone();
+        m.media = Some(mi);
+        self.materials.push(m);
+        let i = (self.materials.len() - 1) as u32;
+        self.with_media.insert((id, mi), i);
+        i
+    }
+
     /// The runtime id of the material a shape refers to: the material's
     /// index in `desc.materials` (materials are built in that order), or
     /// [`Self::default`]. An undefined name is an error at the reference.
@@ -70,7 +87,11 @@ pub fn build_materials(
     }
     let default = materials.len() as u32;
     materials.push(diffuse::default_kind().into());
-    Ok(BuiltMaterials { materials, default })
+    Ok(BuiltMaterials {
+        materials,
+        default,
+        with_media: Default::default(),
+    })
 }
 
 fn build_material(
@@ -115,7 +136,11 @@ fn build_material(
     };
     let known = [&known[..], &["displacement", "normalmap"]].concat();
     w.unused(p, &format!("material \"{}\"", e.ty), &known);
-    Ok(Material { kind, shading })
+    Ok(Material {
+        kind,
+        shading,
+        media: None,
+    })
 }
 
 /// A type lumis does not have: a warning, and the default material.
@@ -157,6 +182,7 @@ mod tests {
         let mats = BuiltMaterials {
             materials: Vec::new(),
             default: desc.materials.len() as u32,
+            with_media: Default::default(),
         };
         let ids: Vec<_> = desc.shapes[..4]
             .iter()

@@ -19,6 +19,7 @@ mod sphere;
 mod trianglemesh;
 
 use super::material::BuiltMaterials;
+use super::medium::BuiltMedia;
 use super::Warnings;
 use crate::geometry::{Prim, TriangleMesh};
 use crate::light::Light;
@@ -28,18 +29,19 @@ use lumis_scene::{Diagnostic, SceneDesc, ShapeDesc};
 
 pub fn build_shapes(
     desc: &SceneDesc,
-    mats: &BuiltMaterials,
+    mats: &mut BuiltMaterials,
+    media: &BuiltMedia,
     shapes: &mut Shapes,
     lights: &mut Vec<Light>,
     w: &mut Warnings,
 ) -> Result<(Vec<PrimInfo>, InstanceSet), Diagnostic> {
-    let prims = add_shapes(desc, &desc.shapes, mats, shapes, lights, w)?;
+    let prims = add_shapes(desc, &desc.shapes, mats, media, shapes, lights, w)?;
     // Objects: built once, in the space of their shapes' own transforms
     // (area lights were already refused by the parser, as pbrt-v4 does).
     let mut set = InstanceSet::default();
     for o in &desc.objects {
         let before = lights.len();
-        let prims = add_shapes(desc, &o.shapes, mats, shapes, lights, w)?;
+        let prims = add_shapes(desc, &o.shapes, mats, media, shapes, lights, w)?;
         debug_assert_eq!(lights.len(), before, "objects carry no area lights");
         set.objects.push(prims);
     }
@@ -65,14 +67,18 @@ pub fn build_shapes(
 fn add_shapes(
     desc: &SceneDesc,
     list: &[ShapeDesc],
-    mats: &BuiltMaterials,
+    mats: &mut BuiltMaterials,
+    media: &BuiltMedia,
     shapes: &mut Shapes,
     lights: &mut Vec<Light>,
     w: &mut Warnings,
 ) -> Result<Vec<PrimInfo>, Diagnostic> {
     let mut prims = Vec::new();
     for s in list {
-        let material = mats.id(desc, &s.material)?;
+        let mut material = mats.id(desc, &s.material)?;
+        if let Some(mi) = media.interface(&s.media)? {
+            material = mats.with_media(material, mi);
+        }
         let new_prims = match build_shape(desc, s, w)? {
             Some(built) => store(shapes, built),
             None => continue,
