@@ -106,14 +106,13 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
     let camera_medium = media.id(&desc.camera.as_ref().and_then(|c| c.medium.clone()))?;
     let mut shapes = Shapes::default();
     let mut lights = Vec::new();
-    let (prims, instances) = shape::build_shapes(
-        desc,
-        &mut materials,
-        &media,
-        &mut shapes,
-        &mut lights,
-        &mut w,
-    )?;
+    let mut surfaces = shape::Surfaces {
+        mats: &mut materials,
+        media: &media,
+        tex: &tex,
+    };
+    let (prims, instances) =
+        shape::build_shapes(desc, &mut surfaces, &mut shapes, &mut lights, &mut w)?;
     lights::build_lights(desc, &mut lights, &mut w)?;
     if lights.is_empty() {
         w.push(

@@ -62,6 +62,10 @@ pub struct Material {
     /// `MediumInterface` changes the medium (the loader gives each such
     /// material and interface pair its own id); `None` elsewhere.
     pub media: Option<crate::media::MediumInterface>,
+    /// The shape's `alpha` cutout (pbrt-v4): where it is below 1 the
+    /// surface is there for only that fraction of rays. The loader gives
+    /// each shape with one its own copy of the material.
+    pub alpha: Option<crate::texture::TexFloat>,
 }
 
 impl From<MaterialKind> for Material {
@@ -70,6 +74,7 @@ impl From<MaterialKind> for Material {
             kind,
             shading: Shading::Smooth,
             media: None,
+            alpha: None,
         }
     }
 }

@@ -19,6 +19,16 @@ use crate::texture::Textures;
 use lumis_math::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+/// A uniform number in [0, 1) from a ray's origin and direction, the same
+/// for the same ray (pbrt-v4's stochastic alpha test).
+fn alpha_hash(r: &Ray) -> f32 {
+    let b = |v: Vec3| [v.x, v.y, v.z].map(|c| c.to_bits() as u64);
+    let [a, b2, c] = b(r.o);
+    let [d, e, f] = b(r.d);
+    let h = lumis_math::rng::hash(&[a, b2, c, d, e, f]);
+    (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+}
+
 #[derive(Default)]
 pub struct RayCounters {
     pub rays: AtomicU64,
@@ -45,6 +55,8 @@ pub struct Scene {
     /// The medium the camera sits in.
     pub camera_medium: Option<u32>,
     pub bounds: Aabb,
+    /// Whether any material has an `alpha` cutout (then hits are tested).
+    pub has_alpha: bool,
     pub counters: RayCounters,
     /// Embree's structures when [`Scene::use_embree`] chose that backend.
     #[cfg(feature = "embree")]
@@ -116,6 +128,7 @@ impl Scene {
             .map(|(i, _)| i as u32)
             .collect();
         let light_sampler = LightSampler::new(&lights, &shapes);
+        let has_alpha = materials.iter().any(|m| m.alpha.is_some());
         Scene {
             shapes,
             world,
@@ -128,6 +141,7 @@ impl Scene {
             camera,
             media: Vec::new(),
             camera_medium: None,
+            has_alpha,
             bounds,
             counters: RayCounters::default(),
             #[cfg(feature = "embree")]
@@ -151,6 +165,16 @@ impl Scene {
     /// Closest intersection along the ray, or `None`.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let hit = self.intersect_any_alpha(ray);
+        if self.has_alpha {
+            return self.skip_cutouts(ray, hit);
+        }
+        hit
+    }
+
+    /// The closest hit ignoring `alpha` cutouts.
+    #[inline]
+    fn intersect_any_alpha(&self, ray: &Ray) -> Option<Hit> {
         #[cfg(feature = "embree")]
         if let Some(e) = &self.embree {
             return e.intersect(&self.shapes, &self.world, &self.instances, ray);
@@ -161,11 +185,45 @@ impl Scene {
     /// Whether anything blocks the ray before `ray.tmax`.
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {
+        if self.has_alpha {
+            return self.intersect(ray).is_some();
+        }
         #[cfg(feature = "embree")]
         if let Some(e) = &self.embree {
             return e.occluded(ray);
         }
         self.occluded_bvh(ray)
+    }
+
+    /// `hit`, or the first hit beyond it that an `alpha` cutout does not
+    /// remove: as pbrt-v4, a surface with alpha `a` < 1 stops the rays
+    /// whose hash of origin and direction is below `a` (none at 0), and the
+    /// others go on from the hit. Distances stay along `ray`.
+    #[cold]
+    fn skip_cutouts(&self, ray: &Ray, mut hit: Option<Hit>) -> Option<Hit> {
+        let mut r = *ray;
+        let mut t0 = 0.0f32;
+        for _ in 0..1024 {
+            let h = hit.as_mut()?;
+            let Some(alpha) = &self.materials[h.material as usize].alpha else {
+                h.t += t0;
+                return hit;
+            };
+            let c = crate::texture::TexCtx::at(h.geom.p, h.geom.ns, h.geom.uv);
+            let a = alpha.eval(&self.textures, &c);
+            if a >= 1.0 || (a > 0.0 && alpha_hash(&r) <= a) {
+                h.t += t0;
+                return hit;
+            }
+            let mut next = crate::geometry::ray::spawn_ray(h.geom.p, h.geom.ng, r.d);
+            // The offset origin is a hair past the hit: keep the end fixed.
+            let moved = (next.o - r.o).dot(r.d) / r.d.length_squared();
+            next.tmax = r.tmax - moved;
+            t0 += moved;
+            r = next;
+            hit = self.intersect_any_alpha(&r);
+        }
+        None
     }
 
     /// [`Scene::intersect`] with the built-in BVH whatever the backend.

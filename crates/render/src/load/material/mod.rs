@@ -55,6 +55,14 @@ impl BuiltMaterials {
         i
     }
 
+    /// A copy of material `id` for a shape with an `alpha` cutout.
+    pub fn with_alpha(&mut self, id: u32, alpha: crate::texture::TexFloat) -> u32 {
+        let mut m = self.materials[id as usize].clone();
+        m.alpha = Some(alpha);
+        self.materials.push(m);
+        (self.materials.len() - 1) as u32
+    }
+
     /// The runtime id of the material a shape refers to: the material's
     /// index in `desc.materials` (materials are built in that order), or
     /// [`Self::default`]. An undefined name is an error at the reference.
@@ -140,6 +148,7 @@ fn build_material(
         kind,
         shading,
         media: None,
+        alpha: None,
     })
 }
 

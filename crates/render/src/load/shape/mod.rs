@@ -20,28 +20,64 @@ mod trianglemesh;
 
 use super::material::BuiltMaterials;
 use super::medium::BuiltMedia;
+use super::texture::TexBuilder;
 use super::Warnings;
 use crate::geometry::{Prim, TriangleMesh};
 use crate::light::Light;
 use crate::scene::{Instance, InstanceSet, PrimInfo, Shapes, NO_LIGHT};
+use crate::texture::TexFloat;
 use common::{Built, Ctx};
 use lumis_scene::{Diagnostic, SceneDesc, ShapeDesc};
 
+/// What a shape's surface is made of: materials (extended with copies for
+/// media interfaces and cutouts), media and textures.
+pub struct Surfaces<'a, 't> {
+    pub mats: &'a mut BuiltMaterials,
+    pub media: &'a BuiltMedia,
+    pub tex: &'a TexBuilder<'t>,
+}
+
+impl Surfaces<'_, '_> {
+    /// The material id of shape `s`: its material, on its medium interface
+    /// (if it changes the medium), with its `alpha` cutout (if any).
+    fn material(&mut self, desc: &SceneDesc, s: &ShapeDesc) -> Result<u32, Diagnostic> {
+        let mut material = self.mats.id(desc, &s.material)?;
+        if let Some(mi) = self.media.interface(&s.media)? {
+            material = self.mats.with_media(material, mi);
+        }
+        match self.tex.float(&s.entity.params, "alpha", 1.0)? {
+            TexFloat::Const(a) if a >= 1.0 => {}
+            TexFloat::Const(a) if !(a >= 0.0) => {
+                let loc = s
+                    .entity
+                    .params
+                    .loc_of("alpha")
+                    .unwrap_or_else(|| s.entity.loc.clone());
+                return Err(Diagnostic::error(
+                    &loc,
+                    format!("`alpha` must be in [0, 1] (above 1 counts as 1), found {a}"),
+                ));
+            }
+            alpha => material = self.mats.with_alpha(material, alpha),
+        }
+        Ok(material)
+    }
+}
+
 pub fn build_shapes(
     desc: &SceneDesc,
-    mats: &mut BuiltMaterials,
-    media: &BuiltMedia,
+    surf: &mut Surfaces,
     shapes: &mut Shapes,
     lights: &mut Vec<Light>,
     w: &mut Warnings,
 ) -> Result<(Vec<PrimInfo>, InstanceSet), Diagnostic> {
-    let prims = add_shapes(desc, &desc.shapes, mats, media, shapes, lights, w)?;
+    let prims = add_shapes(desc, &desc.shapes, surf, shapes, lights, w)?;
     // Objects: built once, in the space of their shapes' own transforms
     // (area lights were already refused by the parser, as pbrt-v4 does).
     let mut set = InstanceSet::default();
     for o in &desc.objects {
         let before = lights.len();
-        let prims = add_shapes(desc, &o.shapes, mats, media, shapes, lights, w)?;
+        let prims = add_shapes(desc, &o.shapes, surf, shapes, lights, w)?;
         debug_assert_eq!(lights.len(), before, "objects carry no area lights");
         set.objects.push(prims);
     }
@@ -67,18 +103,14 @@ pub fn build_shapes(
 fn add_shapes(
     desc: &SceneDesc,
     list: &[ShapeDesc],
-    mats: &mut BuiltMaterials,
-    media: &BuiltMedia,
+    surf: &mut Surfaces,
     shapes: &mut Shapes,
     lights: &mut Vec<Light>,
     w: &mut Warnings,
 ) -> Result<Vec<PrimInfo>, Diagnostic> {
     let mut prims = Vec::new();
     for s in list {
-        let mut material = mats.id(desc, &s.material)?;
-        if let Some(mi) = media.interface(&s.media)? {
-            material = mats.with_media(material, mi);
-        }
+        let material = surf.material(desc, s)?;
         let new_prims = match build_shape(desc, s, w)? {
             Some(built) => store(shapes, built),
             None => continue,
@@ -116,7 +148,7 @@ fn build_shape(
 ) -> Result<Option<Built>, Diagnostic> {
     let e = &s.entity;
     let p = &e.params;
-    w.unsupported(p, &["alpha", "emissionfilename"], "shape", "ignored");
+    w.unsupported(p, &["emissionfilename"], "shape", "ignored");
     let xf = s.object_to_world;
     let c = Ctx {
         desc,
