@@ -21,7 +21,12 @@ is matched:
   -> material "none" (a perfect mirror) times that reflectance; pbrt's
   roughness r -> GGX alpha sqrt(r) (pbrt-v4's remapping); opaque BSDFs are
   two-sided, as pbrt's are;
-- area lights: diffuse, one-sided, rgb L -> area emitter radiance.
+- area lights: diffuse, one-sided, rgb L -> area emitter radiance;
+- media: homogeneous with rgb sigma_a, sigma_s, scale and g -> Mitsuba's
+  homogeneous (sigma_t and albedo, hg phase); MediumInterface on a shape ->
+  its interior and exterior (when they differ), at the Camera -> the
+  sensor's medium; material "interface" -> bsdf "null"; the integrator is
+  then volpath.
 """
 
 import argparse
@@ -49,6 +54,8 @@ def metal(s, name):
 def bsdf_xml(s, ty, ident=""):
     """Mitsuba BSDF for a pbrt material statement of type `ty`."""
     idattr = f' id="{ident}"' if ident else ""
+    if ty == "interface":
+        return '<bsdf type="null"/>'
     if ty == "diffuse":
         refl = s.param("reflectance", [0.5, 0.5, 0.5])
         inner = f'<bsdf type="diffuse"><rgb name="reflectance" value="{rgb(refl)}"/></bsdf>'
@@ -101,8 +108,9 @@ class Converter:
         self.out_dir, self.name, self.res, self.maxdepth = out_dir, name, res, maxdepth
         self.xml, self.meshes = [], 0
         # graphics state: translation, uniform scale, material (xml or ref), area light
-        self.state = {"t": [0.0, 0.0, 0.0], "s": 1.0, "mat": None, "light": None}
+        self.state = {"t": [0.0, 0.0, 0.0], "s": 1.0, "mat": None, "light": None, "media": ("", "")}
         self.stack = []
+        self.media = []
 
     def run(self, stmts):
         head = {}
@@ -117,11 +125,14 @@ class Converter:
             rfilter = (
                 f'<rfilter type="gaussian"><float name="stddev" value="{filt.one("sigma", 0.5)}"/></rfilter>'
             )
+        integrator = "volpath" if self.media else "path"
+        cam_medium = f'<ref name="medium" id="{head["medium"]}"/>' if head.get("medium") else ""
         scene = [
             '<scene version="3.0.0">',
-            f'<integrator type="path"><integer name="max_depth" value="{self.maxdepth + 1}"/>'
+            f'<integrator type="{integrator}"><integer name="max_depth" value="{self.maxdepth + 1}"/>'
             '<integer name="rr_depth" value="2"/></integrator>',
-            '<sensor type="perspective">'
+            *self.media,
+            f'<sensor type="perspective">{cam_medium}'
             f'<float name="fov" value="{head["fov"]}"/><string name="fov_axis" value="smaller"/>'
             f'<transform name="to_world"><scale x="-1"/><lookat origin="{rgb(eye)}" '
             f'target="{rgb(look)}" up="{rgb(up)}"/></transform>'
@@ -145,6 +156,7 @@ class Converter:
         if s.args != ["perspective"] or {n for _, n in s.params} - {"fov"}:
             raise PbrtError(f"{s.loc}: only a perspective camera with fov is converted")
         head["fov"] = s.one("fov", 90.0)
+        head["medium"] = self.state["media"][1]
 
     def do_Film(self, s, head):
         s.set("integer", "xresolution", [self.res[0]])
@@ -166,6 +178,26 @@ class Converter:
 
     def do_other(self, s, head):  # Sampler, WorldBegin: kept as they are
         pass
+
+    def do_MakeNamedMedium(self, s, head):
+        if s.one("type") != "homogeneous" or {n for _, n in s.params} - {"type", "sigma_a", "sigma_s", "scale", "g"}:
+            raise PbrtError(f"{s.loc}: only homogeneous media with sigma_a, sigma_s, scale, g are converted")
+        k = s.one("scale", 1.0)
+        sa = [k * v for v in s.param("sigma_a", [1, 1, 1])]
+        ss = [k * v for v in s.param("sigma_s", [1, 1, 1])]
+        st = [a + b for a, b in zip(sa, ss, strict=True)]
+        albedo = [b / t if t > 0 else 0 for b, t in zip(ss, st, strict=True)]
+        # Mitsuba's rgb values are reflectance-like (at most 1): the largest
+        # sigma_t goes into the medium's scale.
+        top = max(st) or 1.0
+        self.media.append(
+            f'<medium type="homogeneous" id="{s.args[0]}"><rgb name="sigma_t" value="{rgb([v / top for v in st])}"/>'
+            f'<float name="scale" value="{top:.9g}"/><rgb name="albedo" value="{rgb(albedo)}"/>'
+            f'<phase type="hg"><float name="g" value="{s.one("g", 0.0)}"/></phase></medium>'
+        )
+
+    def do_MediumInterface(self, s, head):
+        self.state["media"] = (s.args[0], s.args[-1])
 
     # World block
     def do_MakeNamedMaterial(self, s, head):
@@ -222,7 +254,12 @@ class Converter:
             else:
                 raise PbrtError(f"{s.loc}: shape `{ty}` (or its parameters) is not converted")
             geo = f'<shape type="ply"><string name="filename" value="{path}"/>'
-        self.xml.append(geo + st["mat"] + (st["light"] or "") + "</shape>")
+        inside, outside = st["media"]
+        media = ""
+        if inside != outside:
+            media += f'<ref name="interior" id="{inside}"/>' if inside else ""
+            media += f'<ref name="exterior" id="{outside}"/>' if outside else ""
+        self.xml.append(geo + st["mat"] + (st["light"] or "") + media + "</shape>")
 
 
 def main():

@@ -14,7 +14,8 @@ PARAM = re.compile(r"^(integer|float|point3|normal|rgb|spectrum|string|bool) (\w
 DIRECTIVES = {
     "Integrator", "LookAt", "Sampler", "PixelFilter", "Film", "Camera", "WorldBegin",
     "MakeNamedMaterial", "NamedMaterial", "Material", "Shape", "AttributeBegin",
-    "AttributeEnd", "Translate", "Scale", "AreaLightSource",
+    "AttributeEnd", "Translate", "Scale", "AreaLightSource", "MakeNamedMedium",
+    "MediumInterface",
 }  # fmt: skip
 
 

@@ -159,3 +159,16 @@ Shape "sphere""#,
     let w = l.warnings[0].to_string();
     assert!(w.contains("m.pbrt:2:") && w.contains("only `path`"), "{w}");
 }
+
+#[test]
+fn the_media_scenes_load_without_warnings() {
+    for name in ["fog-glass", "tea"] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes/media")
+            .join(format!("{name}.pbrt"));
+        let l = lumis_render::load::load_path(&path, &Overrides::default()).unwrap();
+        assert!(l.warnings.is_empty(), "{name}: {:?}", l.warnings);
+        assert_eq!(l.scene.media.len(), 1, "{name}");
+        assert!(l.scene.materials.iter().any(|m| m.media.is_some()), "{name}");
+    }
+}
