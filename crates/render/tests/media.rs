@@ -6,7 +6,8 @@
 
 mod common;
 
-use common::{assert_close, header, load, region_mean_and_se, render_loaded};
+use common::media::{per_channel, sphere_of};
+use common::{assert_close, header, load, render_loaded};
 use lumis_math::{Pcg32, Rgb, Transform, Vec3};
 use lumis_render::load::Overrides;
 use lumis_render::media::voxels::Voxels;
@@ -43,10 +44,6 @@ AttributeEnd
 /// A closed unit cube around the origin (outward normals), as a trianglemesh.
 const BOX: &str = r#"Shape "trianglemesh" "point3 P" [ -1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1 ]
   "integer indices" [ 0 2 1 0 3 2  4 5 6 4 6 7  0 1 5 0 5 4  2 3 7 2 7 6  1 2 6 1 6 5  0 4 7 0 7 3 ]"#;
-
-fn per_channel(film: &lumis_render::film::Film) -> [(f64, f64); 3] {
-    [0, 1, 2].map(|c| region_mean_and_se(film, Some(c)))
-}
 
 const SIGMA_A: [f32; 3] = [0.5, 1.0, 2.0];
 
@@ -107,26 +104,6 @@ fn absorbing_liquid_inside_smooth_glass() {
             0.0,
         );
     }
-}
-
-/// Inside a sphere of radius 1 filled with `medium`, seen from its centre;
-/// the sphere is `wall` (an area light or a black surface).
-fn sphere_of(medium: &str, wall: &str) -> String {
-    format!(
-        r#"Integrator "path" "integer maxdepth" [ 100000 ]
-{}
-MediumInterface "" "fog"
-LookAt 0 0 0  0.3 0.2 -1  0 1 0
-Camera "perspective" "float fov" [ 90 ]
-WorldBegin
-{medium}
-{wall}
-Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-MediumInterface "fog" ""
-Shape "sphere" "float radius" [ 1 ]
-"#,
-        header(16)
-    )
 }
 
 #[test]

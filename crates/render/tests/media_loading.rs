@@ -157,7 +157,10 @@ Shape "sphere""#,
     assert!(l.scene.media.is_empty());
     assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
     let w = l.warnings[0].to_string();
-    assert!(w.contains("m.pbrt:2:") && w.contains("only `path`"), "{w}");
+    assert!(
+        w.contains("m.pbrt:2:") && w.contains("`path` and `photon` do"),
+        "{w}"
+    );
 }
 
 #[test]
@@ -169,6 +172,9 @@ fn the_media_scenes_load_without_warnings() {
         let l = lumis_render::load::load_path(&path, &Overrides::default()).unwrap();
         assert!(l.warnings.is_empty(), "{name}: {:?}", l.warnings);
         assert_eq!(l.scene.media.len(), 1, "{name}");
-        assert!(l.scene.materials.iter().any(|m| m.media.is_some()), "{name}");
+        assert!(
+            l.scene.materials.iter().any(|m| m.media.is_some()),
+            "{name}"
+        );
     }
 }

@@ -22,21 +22,67 @@ use crate::bsdf::TransportMode;
 use crate::geometry::ray::{spawn_ray, spawn_ray_to};
 use crate::geometry::Ray;
 use crate::light::LiSample;
-use crate::media::{track, MediumInterface};
+use crate::media::{track, Medium, MediumInterface};
 use crate::scene::Scene;
 use lumis_math::mis::power_heuristic;
 use lumis_math::{Pcg32, Rgb, Sampler, Vec3};
 
 /// Boundary crossings allowed in one flight or shadow ray (guards against
 /// rays caught between coincident boundaries).
-const MAX_CROSSINGS: u32 = 256;
+pub(crate) const MAX_CROSSINGS: u32 = 256;
 
-enum Flight {
+/// How a free flight ended.
+pub(crate) enum Flight {
     /// Reached the surface (or escaped) with the throughput updated.
     Passed,
     Absorbed,
-    /// Scattered at this point of the medium.
+    /// Scattered at this point of the medium (throughput updated).
     Scattered(Vec3),
+}
+
+/// One free flight by delta tracking through `medium` along `o + t d` (`d`
+/// unit) within `[0, tmax)`: `beta` takes each collision's per-channel
+/// weight, and the medium's emission along the way is added to `emitted`
+/// (times `beta`) when asked for. Used by `path` and by `photon`'s photons,
+/// camera paths and gather rays.
+pub(crate) fn fly(
+    medium: &Medium,
+    o: Vec3,
+    d: Vec3,
+    tmax: f32,
+    rng: &mut Pcg32,
+    beta: &mut Rgb,
+    mut emitted: Option<&mut Rgb>,
+) -> Flight {
+    let mut flight = Flight::Passed;
+    track::collisions(medium, o, d, tmax, rng, |rng, _, p, mp, maj| {
+        if let Some(e) = emitted.as_deref_mut() {
+            if !mp.le.is_black() {
+                *e += *beta * mp.sigma_a * mp.le / maj;
+            }
+        }
+        let pa = mp.sigma_a.average() / maj;
+        let ps = mp.sigma_s.average() / maj;
+        let u = rng.next_f32();
+        if u < pa {
+            flight = Flight::Absorbed;
+            return false;
+        }
+        if u < pa + ps {
+            *beta *= mp.sigma_s / (maj * ps);
+            flight = Flight::Scattered(p);
+            return false;
+        }
+        let sn = track::sigma_n(&mp, maj);
+        let pn = sn.average() / maj;
+        *beta *= sn / (maj * pn);
+        if !beta.is_finite() || beta.is_black() {
+            flight = Flight::Absorbed;
+            return false;
+        }
+        true
+    });
+    flight
 }
 
 pub fn li(
@@ -73,34 +119,8 @@ pub fn li(
             let d = ray.d / len;
             let tmax = hit.as_ref().map_or(f32::INFINITY, |h| h.t * len);
             let med = &scene.media[m as usize];
-            let mut flight = Flight::Passed;
-            let emit = depth < max_depth;
-            track::collisions(med, ray.o, d, tmax, &mut rng, |rng, _, p, mp, maj| {
-                if emit && !mp.le.is_black() {
-                    l += beta * mp.sigma_a * mp.le / maj;
-                }
-                let pa = mp.sigma_a.average() / maj;
-                let ps = mp.sigma_s.average() / maj;
-                let u = rng.next_f32();
-                if u < pa {
-                    flight = Flight::Absorbed;
-                    return false;
-                }
-                if u < pa + ps {
-                    beta *= mp.sigma_s / (maj * ps);
-                    flight = Flight::Scattered(p);
-                    return false;
-                }
-                let sn = track::sigma_n(&mp, maj);
-                let pn = sn.average() / maj;
-                beta *= sn / (maj * pn);
-                if !beta.is_finite() || beta.is_black() {
-                    flight = Flight::Absorbed;
-                    return false;
-                }
-                true
-            });
-            match flight {
+            let emit = (depth < max_depth).then_some(&mut l);
+            match fly(med, ray.o, d, tmax, &mut rng, &mut beta, emit) {
                 Flight::Absorbed => break,
                 Flight::Scattered(p) => {
                     if depth == max_depth {
@@ -113,7 +133,7 @@ pub fn li(
                         let v = phase.p(wo, wi);
                         (Rgb::splat(v), v)
                     };
-                    l += beta * direct(scene, p, None, medium, eval, sampler, &mut rng, rays);
+                    l += beta * direct(scene, p, None, medium, eval, 1.0, sampler, &mut rng, rays);
                     let Some(ps) = phase.sample(wo, sampler.get_2d()) else {
                         break;
                     };
@@ -177,6 +197,7 @@ pub fn li(
                     Some(at),
                     medium,
                     eval,
+                    1.0,
                     sampler,
                     &mut rng,
                     rays,
@@ -224,23 +245,25 @@ fn roulette(beta: &mut Rgb, eta_scale: f32, depth: u32, sampler: &mut Sampler) -
 
 /// The surface a shadow ray leaves from.
 #[derive(Clone, Copy)]
-struct Surface {
-    ng: Vec3,
-    interface: Option<MediumInterface>,
+pub(crate) struct Surface {
+    pub ng: Vec3,
+    pub interface: Option<MediumInterface>,
 }
 
 /// Next-event estimation at `p` (on a surface, or in a medium when `at` is
 /// `None`): one light by power, one point on it, the transmittance to it,
-/// weighted against scattering by the power heuristic. `eval(wi)` gives the
+/// weighted by the power heuristic against `n_scatter` scattering samples
+/// (BSDF or phase) taken at the same point. `eval(wi)` gives the
 /// scattering function (times the cosine on surfaces) and its sampling
 /// density. Consumes three sampler dimensions.
 #[allow(clippy::too_many_arguments)]
-fn direct(
+pub(crate) fn direct(
     scene: &Scene,
     p: Vec3,
     at: Option<Surface>,
     medium: Option<u32>,
     eval: impl Fn(Vec3) -> (Rgb, f32),
+    n_scatter: f32,
     sampler: &mut Sampler,
     rng: &mut Pcg32,
     rays: &mut super::RayCounts,
@@ -276,7 +299,7 @@ fn direct(
     if ls.delta {
         return f * ls.li * tr / light_pdf;
     }
-    let w = power_heuristic(1.0, light_pdf, 1.0, scatter_pdf);
+    let w = power_heuristic(1.0, light_pdf, n_scatter, scatter_pdf);
     f * ls.li * tr * (w / light_pdf)
 }
 

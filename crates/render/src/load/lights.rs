@@ -7,12 +7,17 @@ use crate::light::*;
 use lumis_math::{Frame, Rgb, Vec3, PI};
 use lumis_scene::{Diagnostic, SceneDesc};
 
+/// Also appends each light's medium (the outside medium in effect at its
+/// `LightSource`) to `light_media`.
 pub fn build_lights(
     desc: &SceneDesc,
+    media: &super::medium::BuiltMedia,
     lights: &mut Vec<Light>,
+    light_media: &mut Vec<crate::media::LightMedium>,
     w: &mut Warnings,
 ) -> Result<(), Diagnostic> {
     for ld in &desc.lights {
+        let medium = crate::media::LightMedium::In(media.id(&ld.medium)?);
         let e = &ld.entity;
         let p = &e.params;
         let xf = ld.light_to_world;
@@ -104,6 +109,7 @@ pub fn build_lights(
             "infinite" => {
                 if p.has("filename") {
                     lights.push(super::envmap::build_image_light(desc, e, &xf, w)?);
+                    light_media.push(medium);
                     continue;
                 }
                 let mut l = light_rgb(desc, p, "L")?.unwrap_or(Rgb::WHITE) * scale;
@@ -137,6 +143,7 @@ pub fn build_lights(
             }
         };
         lights.push(light);
+        light_media.push(medium);
     }
     Ok(())
 }

@@ -110,10 +110,13 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
         mats: &mut materials,
         media: &media,
         tex: &tex,
+        light_media: Vec::new(),
     };
     let (prims, instances) =
         shape::build_shapes(desc, &mut surfaces, &mut shapes, &mut lights, &mut w)?;
-    lights::build_lights(desc, &mut lights, &mut w)?;
+    let mut light_media = surfaces.light_media;
+    lights::build_lights(desc, &media, &mut lights, &mut light_media, &mut w)?;
+    debug_assert_eq!(light_media.len(), lights.len());
     if lights.is_empty() {
         w.push(
             Diagnostic::plain_error("the scene has no lights: the image will be black")
@@ -127,7 +130,7 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
     let render_media = !media.media.is_empty()
         && matches!(
             options.integrator,
-            crate::integrator::Integrator::Path { .. }
+            crate::integrator::Integrator::Path { .. } | crate::integrator::Integrator::Photon(_)
         );
     let mut prims = prims;
     prims.retain(|p| {
@@ -152,6 +155,7 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
     if render_media {
         scene.media = media.media;
         scene.camera_medium = camera_medium;
+        scene.light_media = light_media;
     } else if !media.media.is_empty() {
         let loc = desc
             .integrator
@@ -160,10 +164,10 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
         w.push(Diagnostic::warning(
             &loc,
             format!(
-                "integrator `{}` does not render participating media yet (only `path` does): they are left out of this image",
+                "integrator `{}` does not render participating media yet (`path` and `photon` do): they are left out of this image",
                 options.integrator.name()
             ),
-        ).with_help("render media with `--integrator path`"));
+        ).with_help("render media with `--integrator photon` or `--integrator path`"));
     }
     let mut textures = tex.textures;
     textures.footprint = crate::texture::Footprint::new(&scene.camera, options.spp);

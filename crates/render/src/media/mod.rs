@@ -156,3 +156,11 @@ impl Phase {
         }
     }
 }
+
+/// The medium a light emits into: one medium, or, for an area light on a
+/// shape between two media, the side each emitted ray leaves on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightMedium {
+    In(Option<u32>),
+    Between(MediumInterface),
+}

@@ -54,6 +54,8 @@ pub struct Scene {
     pub media: Vec<Medium>,
     /// The medium the camera sits in.
     pub camera_medium: Option<u32>,
+    /// The medium each light emits into (by light id; empty without media).
+    pub light_media: Vec<crate::media::LightMedium>,
     pub bounds: Aabb,
     /// Whether any material has an `alpha` cutout (then hits are tested).
     pub has_alpha: bool,
@@ -141,6 +143,7 @@ impl Scene {
             camera,
             media: Vec::new(),
             camera_medium: None,
+            light_media: Vec::new(),
             has_alpha,
             bounds,
             counters: RayCounters::default(),

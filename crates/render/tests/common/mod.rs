@@ -7,6 +7,7 @@
 pub mod bidir;
 pub mod chi2;
 pub mod envmap;
+pub mod media;
 
 use lumis_render::film::Film;
 use lumis_render::integrator::{

@@ -3,11 +3,13 @@
 //! the first non-delta hit the shading of `gather.rs`.
 
 use super::gather::{delta_lobe_sample, shade, PhotonCtx};
+use super::volume;
 use super::weights::{Alpha, AlphaMode};
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::integrator::lighting::{emitted_mis_n, escaped_mis_n};
+use crate::integrator::volpath::{Flight, MAX_CROSSINGS};
 use lumis_math::{Rgb, Sampler, Vec2, Vec3};
 
 /// Radiance along a camera ray.
@@ -18,11 +20,15 @@ pub fn li(
     rays: &mut crate::integrator::RayCounts,
 ) -> Rgb {
     let mut splits = ctx.s.specular_splits;
+    if ctx.scene.has_media() {
+        super::volume::seed(sampler);
+    }
     let start = Branch {
         ray,
         beta: Rgb::WHITE,
         depth: 0,
         first: true,
+        medium: ctx.scene.camera_medium,
     };
     trace_camera(ctx, start, &mut splits, sampler, rays)
 }
@@ -33,6 +39,8 @@ struct Branch {
     beta: Rgb,
     depth: u32,
     first: bool,
+    /// The medium the ray travels in.
+    medium: Option<u32>,
 }
 
 /// The radiance a camera path brings from `b` on. At a smooth dielectric,
@@ -54,6 +62,7 @@ fn trace_camera(
         mut beta,
         depth: start,
         mut first,
+        mut medium,
     } = b;
     let mut l = Rgb::BLACK;
     for depth in start..=ctx.s.max_depth {
@@ -62,9 +71,44 @@ fn trace_camera(
         } else {
             rays.indirect += 1;
         }
-        let Some(hit) = scene.intersect(&ray) else {
+        let mut hit = scene.intersect(&ray);
+        if scene.has_media() {
+            // Free flights, and pure boundaries crossed; a path that
+            // scatters in a medium is shaded there and ends.
+            for _ in 0..MAX_CROSSINGS {
+                let mut emitted = Rgb::BLACK;
+                let f = volume::flight(ctx, medium, &ray, hit.as_ref(), &mut beta, &mut emitted);
+                l += emitted;
+                match f {
+                    Flight::Absorbed => return l,
+                    Flight::Scattered(p) => {
+                        let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || 0.0);
+                        let m = medium.expect("a flight scatters in a medium");
+                        let wo = -ray.d.normalize();
+                        let m2 = ctx.s.gather_rays;
+                        return l + beta
+                            * volume::shade_medium(ctx, p, wo, m, alpha, m2, depth, sampler, rays);
+                    }
+                    Flight::Passed => {}
+                }
+                match &hit {
+                    Some(h) if scene.is_boundary(h) => {
+                        if let Some(mi) = scene.medium_interface(h) {
+                            medium = mi.towards(ray.d, h.geom.ng);
+                        }
+                        ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
+                        rays.indirect += 1;
+                        hit = scene.intersect(&ray);
+                    }
+                    _ => break,
+                }
+            }
+        }
+        let Some(hit) = hit else {
             return l + beta * escaped_mis_n(scene, &ray, ray.o, 0.0, 0.0, true);
         };
+        let mi = scene.medium_interface(&hit);
+        let side = |w: Vec3| mi.map_or(medium, |mi| mi.towards(w, hit.geom.ng));
         l += beta * emitted_mis_n(scene, &hit, &ray, ray.o, 0.0, 0.0, true);
         let bsdf = scene.bsdf(&hit, -ray.d);
         let wo = -ray.d;
@@ -77,9 +121,11 @@ fn trace_camera(
                         beta: beta * r_w,
                         depth: depth + 1,
                         first,
+                        medium: side(r_wi),
                     };
                     l += trace_camera(ctx, reflected, splits, sampler, rays);
                     beta *= t_w;
+                    medium = side(t_wi);
                     ray = spawn_ray(hit.geom.p, hit.geom.ng, t_wi);
                     continue;
                 }
@@ -89,6 +135,7 @@ fn trace_camera(
                 return l;
             };
             beta *= bs.weight(hit.geom.ns);
+            medium = side(bs.wi);
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
@@ -97,12 +144,16 @@ fn trace_camera(
             f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
         });
         let m2 = ctx.s.gather_rays;
-        l += beta * shade(ctx, &hit, &bsdf, wo, alpha, m2, depth, sampler, rays);
+        l += beta
+            * shade(
+                ctx, &hit, &bsdf, wo, medium, alpha, m2, depth, sampler, rays,
+            );
         // `shade` covers the non-delta part; a BSDF with a delta lobe (a
         // smooth coat) also continues along one sample when it is delta.
         match delta_lobe_sample(&hit, &bsdf, wo, sampler) {
             Some((weight, next)) => {
                 beta *= weight;
+                medium = side(next.d);
                 ray = next;
                 first = false;
             }

@@ -6,12 +6,14 @@
 //! their first non-delta hit; along glossy surfaces the same rules recurse).
 
 use super::aim::emitted_flux;
+use super::volume;
 use super::weights::{q1, q2, w1, w2, Alpha};
 use super::{Kernel, PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE};
 use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::integrator::lighting::{emitted_mis_n, escaped_mis_n, sample_direct_n};
+use crate::integrator::volpath::{Flight, MAX_CROSSINGS};
 use crate::scene::{Hit, Scene};
 use lumis_math::{Rgb, Sampler, Vec2, Vec3, PI};
 use std::cell::RefCell;
@@ -63,6 +65,7 @@ pub fn shade(
     x: &Hit,
     bsdf: &SurfaceBsdf,
     wo: Vec3,
+    medium: Option<u32>,
     alpha: Alpha,
     m2: u32,
     depth: u32,
@@ -70,7 +73,11 @@ pub fn shade(
     rays: &mut crate::integrator::RayCounts,
 ) -> Rgb {
     let scene = ctx.scene;
-    let mut l = sample_direct_n(scene, x, bsdf, wo, m2 as f32, sampler, rays);
+    let mut l = if scene.has_media() {
+        volume::direct_at_surface(ctx, x, bsdf, wo, medium, m2, sampler, rays)
+    } else {
+        sample_direct_n(scene, x, bsdf, wo, m2 as f32, sampler, rays)
+    };
     let (lc, delta_a, alpha) = caustic_photons(ctx, x, bsdf, wo, alpha, m2);
     l += lc;
     if m2 == 0 {
@@ -97,33 +104,44 @@ pub fn shade(
         let cos_x = bs.wi.dot(x.geom.ns).abs();
         let weight = bs.f * (cos_x / bs.pdf);
         let g = Gather {
-            wi: bs.wi,
+            origin: x.geom.p,
+            ray: spawn_ray(x.geom.p, x.geom.ng, bs.wi),
+            medium: scene
+                .medium_interface(x)
+                .map_or(medium, |mi| mi.towards(bs.wi, x.geom.ng)),
             pdf: bs.pdf,
-            cos_x,
-            delta_a,
+            q1_cos: cos_x,
+            q1_measure: delta_a,
             alpha,
             m2,
         };
-        gathered += weight * trace_gather(ctx, x, &g, depth, sampler, rays);
+        gathered += weight * trace_gather(ctx, &g, depth, sampler, rays);
     }
     l + gathered / n
 }
 
-/// One final-gather direction and what its weights need.
-struct Gather {
-    wi: Vec3,
-    pdf: f32,
-    cos_x: f32,
-    delta_a: f32,
-    alpha: f32,
-    m2: u32,
+/// One final-gather direction from a shading point and what its weights need.
+pub(super) struct Gather {
+    /// The shading point (a surface hit or a scattering point in a medium).
+    pub origin: Vec3,
+    pub ray: Ray,
+    /// The medium the ray starts in.
+    pub medium: Option<u32>,
+    /// The direction's sampling density (BSDF or phase function).
+    pub pdf: f32,
+    /// What `q_1` counts photons over besides `N L_e / (Phi alpha)`, as a
+    /// factor and a measure: `cos(theta)` and `DeltaA` on a surface,
+    /// `sigma_s` and `DeltaV` in a medium.
+    pub q1_cos: f32,
+    pub q1_measure: f32,
+    pub alpha: f32,
+    pub m2: u32,
 }
 
-/// Radiance arriving at `x` along a gather ray, with the MIS weights of the
-/// technique that found it applied.
-fn trace_gather(
+/// Radiance arriving at the shading point along a gather ray, with the MIS
+/// weights of the technique that found it applied.
+pub(super) fn trace_gather(
     ctx: &PhotonCtx,
-    x: &Hit,
     g: &Gather,
     depth: u32,
     sampler: &mut Sampler,
@@ -131,15 +149,46 @@ fn trace_gather(
 ) -> Rgb {
     let scene = ctx.scene;
     let s = ctx.s;
-    let mut ray = spawn_ray(x.geom.p, x.geom.ng, g.wi);
+    let mut ray = g.ray;
+    let mut medium = g.medium;
     let mut t = Rgb::WHITE;
     let mut acc = Rgb::BLACK;
     let mut specular = false;
     for d in depth + 1..=s.max_depth {
         rays.gather += 1;
-        let Some(h) = scene.intersect(&ray) else {
+        let mut hit = scene.intersect(&ray);
+        if scene.has_media() {
+            // Free flights, and pure boundaries crossed; a gather ray that
+            // scatters reads the global volume photons there.
+            for _ in 0..MAX_CROSSINGS {
+                let mut emitted = Rgb::BLACK;
+                let f = volume::flight(ctx, medium, &ray, hit.as_ref(), &mut t, &mut emitted);
+                acc += emitted;
+                match f {
+                    Flight::Absorbed => return acc,
+                    Flight::Scattered(p) => {
+                        let wo = -ray.d.normalize();
+                        let m = medium.expect("a flight scatters in a medium");
+                        return acc + t * volume::global_in_scattering(ctx, p, wo, m);
+                    }
+                    Flight::Passed => {}
+                }
+                match &hit {
+                    Some(h) if scene.is_boundary(h) => {
+                        if let Some(mi) = scene.medium_interface(h) {
+                            medium = mi.towards(ray.d, h.geom.ng);
+                        }
+                        ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
+                        rays.gather += 1;
+                        hit = scene.intersect(&ray);
+                    }
+                    _ => break,
+                }
+            }
+        }
+        let Some(h) = hit else {
             if !specular {
-                return acc + escaped_mis_n(scene, &ray, x.geom.p, g.m2 as f32, g.pdf, false);
+                return acc + escaped_mis_n(scene, &ray, g.origin, g.m2 as f32, g.pdf, false);
             }
             // Caustic from an environment through a specular chain.
             let mut sum = Rgb::BLACK;
@@ -166,7 +215,7 @@ fn trace_gather(
         let mut emitted = Rgb::BLACK;
         if let Some(li) = h.light {
             emitted = if !specular {
-                emitted_mis_n(scene, &h, &ray, x.geom.p, g.m2 as f32, g.pdf, false)
+                emitted_mis_n(scene, &h, &ray, g.origin, g.m2 as f32, g.pdf, false)
             } else {
                 let le = scene.lights[li as usize].l(h.geom.ng, h.geom.uv, -ray.d);
                 let flux = || {
@@ -201,11 +250,14 @@ fn trace_gather(
             }
             t *= weight / gamma;
             specular = true;
+            if let Some(mi) = scene.medium_interface(&h) {
+                medium = mi.towards(bs.wi, h.geom.ng);
+            }
             ray = spawn_ray(h.geom.p, h.geom.ng, bs.wi);
             continue;
         }
         let here = if bsdf.is_glossy() && d < s.max_depth {
-            emitted + shade(ctx, &h, &bsdf, wo, Alpha::ONE, 1, d, sampler, rays)
+            emitted + shade(ctx, &h, &bsdf, wo, medium, Alpha::ONE, 1, d, sampler, rays)
         } else {
             emitted + global_radiance(ctx, &h, &bsdf, wo)
         };
@@ -221,6 +273,9 @@ fn trace_gather(
         }
         t *= weight / gamma;
         specular = true;
+        if let Some(mi) = scene.medium_interface(&h) {
+            medium = mi.towards(next.d, h.geom.ng);
+        }
         ray = next;
     }
     acc
@@ -237,7 +292,7 @@ fn caustic_gather_weight(ctx: &PhotonCtx, g: &Gather, le: f32, flux: impl Fn() -
     } else {
         ctx.maps.phi
     };
-    let q_1 = q1(n, le, g.cos_x, g.delta_a, phi, g.alpha);
+    let q_1 = q1(n, le, g.q1_cos, g.q1_measure, phi, g.alpha);
     let q_2 = q2(g.m2, g.pdf);
     w2(q_1, q_2, ctx.s.caustics, ctx.s.heuristic)
 }

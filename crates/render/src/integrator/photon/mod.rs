@@ -20,6 +20,7 @@ pub mod radiance;
 pub mod radius_field;
 pub mod run;
 pub mod trace;
+pub mod volume;
 pub mod weights;
 
 use lumis_scene::ParamSpec;

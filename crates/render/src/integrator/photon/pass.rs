@@ -67,6 +67,10 @@ impl PhotonStats {
 pub struct PhotonMaps {
     pub global: PhotonMap,
     pub caustic: PhotonMap,
+    /// Photons scattered in media (empty without media): every event, and
+    /// the first after a purely specular path (volumetric caustics).
+    pub volume_global: PhotonMap,
+    pub volume_caustic: PhotonMap,
     pub radiance: Option<RadiancePhotons>,
     /// Total emitted power `Phi` (luminance) of all lights.
     pub phi: f32,
@@ -174,6 +178,8 @@ impl PhotonMaps {
         let t1 = Instant::now();
         let global = PhotonMap::build(g.photons, s.global_photons);
         let caustic = PhotonMap::build(c.photons, s.caustic_photons);
+        let volume_global = PhotonMap::build(g.volume, s.global_photons);
+        let volume_caustic = PhotonMap::build(c.volume, s.caustic_photons);
         let stats = PhotonStats {
             global_stored: global.len(),
             caustic_stored: caustic.len(),
@@ -184,6 +190,8 @@ impl PhotonMaps {
         let maps = PhotonMaps {
             global,
             caustic,
+            volume_global,
+            volume_caustic,
             radiance: None,
             phi,
             max_radius,
@@ -217,6 +225,8 @@ impl PhotonMaps {
         st.radiance_time = t2.elapsed();
         st.memory_bytes = self.global.memory_bytes()
             + self.caustic.memory_bytes()
+            + self.volume_global.memory_bytes()
+            + self.volume_caustic.memory_bytes()
             + self.radiance.as_ref().map_or(0, |r| r.memory_bytes());
         st.caustic_radius = radii
             .as_ref()

@@ -6,8 +6,11 @@ use super::aim::{aimed_emission, Targets};
 use super::photon::Photon;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
+use crate::geometry::Ray;
+use crate::integrator::volpath::{fly, Flight, MAX_CROSSINGS};
+use crate::media::LightMedium;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler, SamplerKind, Vec3};
+use lumis_math::{Pcg32, Rgb, Sampler, SamplerKind, Vec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -20,10 +23,14 @@ pub enum MapKind {
     Caustic,
 }
 
+#[derive(Default)]
 pub struct Traced {
     pub photons: Vec<Photon>,
     /// Surface normal (facing the photon's side) where each photon was stored.
     pub normals: Vec<Vec3>,
+    /// Photons stored where they scattered in a medium (`Global`: every
+    /// such event; `Caustic`: the first after a purely specular path).
+    pub volume: Vec<Photon>,
 }
 
 const CHUNK: u64 = 4096;
@@ -40,19 +47,13 @@ pub fn trace_photons(
     cancel: &AtomicBool,
 ) -> Option<Traced> {
     if n_emit == 0 || scene.light_sampler.is_empty() {
-        return Some(Traced {
-            photons: Vec::new(),
-            normals: Vec::new(),
-        });
+        return Some(Traced::default());
     }
     let chunks = n_emit.div_ceil(CHUNK);
     let parts: Vec<Traced> = (0..chunks)
         .into_par_iter()
         .map(|c| {
-            let mut out = Traced {
-                photons: Vec::new(),
-                normals: Vec::new(),
-            };
+            let mut out = Traced::default();
             if cancel.load(Ordering::Relaxed) {
                 return out;
             }
@@ -86,10 +87,12 @@ pub fn trace_photons(
     let mut all = Traced {
         photons: Vec::with_capacity(total),
         normals: Vec::with_capacity(total),
+        volume: Vec::new(),
     };
     for p in parts {
         all.photons.extend(p.photons);
         all.normals.extend(p.normals);
+        all.volume.extend(p.volume);
     }
     Some(all)
 }
@@ -134,9 +137,81 @@ fn trace_one(
         le_rgb.luminance()
     };
     let mut specular_only = true;
-    for depth in 0..=max_depth {
+    // Media: the medium the light emits into, and a stream for free flights.
+    let mut medium = match scene.light_media.get(li as usize) {
+        None | Some(LightMedium::In(None)) => None,
+        Some(LightMedium::In(m)) => *m,
+        // The side of the light's own surface the photon leaves on: found
+        // by a probe back towards it.
+        Some(LightMedium::Between(mi)) => {
+            let back = Ray {
+                o: ray.o,
+                d: -ray.d,
+                tmax: 1e-2,
+            };
+            match scene.intersect(&back) {
+                Some(h) => mi.towards(ray.d, h.geom.ng),
+                None => mi.outside,
+            }
+        }
+    };
+    let mut rng = scene.has_media().then(|| {
+        let bits = |s: &mut Sampler| s.get_1d().to_bits() as u64;
+        Pcg32::new(
+            lumis_math::rng::mix64((bits(sampler) << 32) | bits(sampler)),
+            0,
+        )
+    });
+    'bounce: for depth in 0..=max_depth {
         *rays += 1;
-        let Some(hit) = scene.intersect(&ray) else {
+        let mut hit = scene.intersect(&ray);
+        if let Some(rng) = rng.as_mut() {
+            // Free flights, and pure boundaries crossed, up to the next
+            // surface that scatters or a scattering event in a medium.
+            for _ in 0..MAX_CROSSINGS {
+                if let Some(m) = medium {
+                    let len = ray.d.length();
+                    let d = ray.d / len;
+                    let tmax = hit.as_ref().map_or(f32::INFINITY, |h| h.t * len);
+                    let med = &scene.media[m as usize];
+                    match fly(med, ray.o, d, tmax, rng, &mut power, None) {
+                        Flight::Absorbed => return,
+                        Flight::Scattered(p) => {
+                            match kind {
+                                MapKind::Global => {
+                                    out.volume.push(Photon::new(p, power, -d, le_lum))
+                                }
+                                MapKind::Caustic => {
+                                    if depth > 0 && specular_only {
+                                        out.volume.push(Photon::new(p, power, -d, le_lum));
+                                    }
+                                    return;
+                                }
+                            }
+                            let Some(ps) = med.phase.sample(-d, sampler.get_2d()) else {
+                                return;
+                            };
+                            specular_only = false;
+                            ray = Ray::new(p, ps.wi);
+                            continue 'bounce;
+                        }
+                        Flight::Passed => {}
+                    }
+                }
+                match &hit {
+                    Some(h) if scene.is_boundary(h) => {
+                        if let Some(mi) = scene.medium_interface(h) {
+                            medium = mi.towards(ray.d, h.geom.ng);
+                        }
+                        ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
+                        *rays += 1;
+                        hit = scene.intersect(&ray);
+                    }
+                    _ => break,
+                }
+            }
+        }
+        let Some(hit) = hit else {
             return;
         };
         let bsdf = scene.bsdf(&hit, -ray.d);
@@ -182,6 +257,9 @@ fn trace_one(
                 return;
             }
             specular_only = false;
+        }
+        if let Some(mi) = scene.medium_interface(&hit) {
+            medium = mi.towards(bs.wi, hit.geom.ng);
         }
         ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
     }

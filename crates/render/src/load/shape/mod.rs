@@ -24,6 +24,7 @@ use super::texture::TexBuilder;
 use super::Warnings;
 use crate::geometry::{Prim, TriangleMesh};
 use crate::light::Light;
+use crate::media::LightMedium;
 use crate::scene::{Instance, InstanceSet, PrimInfo, Shapes, NO_LIGHT};
 use crate::texture::TexFloat;
 use common::{Built, Ctx};
@@ -35,6 +36,9 @@ pub struct Surfaces<'a, 't> {
     pub mats: &'a mut BuiltMaterials,
     pub media: &'a BuiltMedia,
     pub tex: &'a TexBuilder<'t>,
+    /// The medium each area light made so far emits into (its shape's
+    /// interface, or the outside medium in effect), in the order of the lights.
+    pub light_media: Vec<LightMedium>,
 }
 
 impl Surfaces<'_, '_> {
@@ -121,6 +125,12 @@ fn add_shapes(
         let first_light = lights.len() as u32;
         if let Some(al) = &s.area_light {
             let built = super::area_lights::area_lights(desc, al, shapes, &new_prims, w)?;
+            let medium = match surf.media.interface(&s.media)? {
+                Some(mi) => LightMedium::Between(mi),
+                None => LightMedium::In(surf.media.id(&s.media.outside)?),
+            };
+            surf.light_media
+                .extend(std::iter::repeat_n(medium, built.len()));
             lights.extend(built.into_iter().map(Light::Area));
         }
         let has_light = lights.len() as u32 > first_light;

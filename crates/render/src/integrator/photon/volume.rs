@@ -1,0 +1,258 @@
+//! `photon` in participating media: volumetric photon mapping with the
+//! seed's two-technique weighting carried into the medium.
+//!
+//! Photons scatter in media (`trace.rs`) and are stored where they do: every
+//! event in the global volume map, the first one after a purely specular
+//! path (`L S+ V`, volumetric caustics) in the caustic volume map. A camera
+//! path that scatters in a medium at `x` (delta tracking, as `path`) takes
+//! the radiance scattered there towards the camera, `∫ p L_i`, as
+//!
+//! - direct light: next-event estimation with the transmittance to the
+//!   light, weighted against the gather rays by the power heuristic;
+//! - volumetric caustics: the caustic volume photons within a sphere of
+//!   radius `r` (volume `DeltaV`), `Σ p(wo, w_j) Phi_j w_1 / (DeltaV
+//!   sigma_s(x))`, **and** `m_2` phase-sampled gather rays that reach an
+//!   emitter through specular surfaces, weighted `w_2`. The seed's weights
+//!   stay as they are with `q_1 = N L_e sigma_s DeltaV / (Phi alpha)` (the
+//!   expected number of photons of this path in the query volume per unit
+//!   solid angle: photons scatter at a rate `sigma_s` per unit length, where
+//!   on a surface `cos(theta) DeltaA` counts them) and `q_2 = m_2 p_phase`,
+//!   `sigma_s` being the channels' mean (the rate photon tracing samples);
+//! - the rest: the gather rays' first scattering point, read from the
+//!   global maps (volume or surface).
+//!
+//! The photon estimate divides by `sigma_s(x)` because stored photons
+//! sample `sigma_s` times the fluence; a channel without scattering has no
+//! photons and gets nothing.
+
+use super::gather::PhotonCtx;
+use super::weights::{q1, q2, w1, Alpha};
+use super::GLOBAL_RADIUS_SCALE;
+use crate::geometry::Ray;
+use crate::integrator::volpath::{self, fly, Flight};
+use crate::scene::Hit;
+use lumis_math::{Pcg32, Rgb, Sampler, Vec3, PI};
+use std::cell::RefCell;
+
+thread_local! {
+    /// The free flights' random stream of the camera sample being traced
+    /// (seeded from its dimensions, so images do not depend on threads).
+    static RNG: RefCell<Pcg32> = RefCell::new(Pcg32::new(0, 0));
+    static FOUND: RefCell<Vec<(u32, f32)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Starts the flights' stream for a camera sample (two sampler dimensions).
+pub(super) fn seed(sampler: &mut Sampler) {
+    let bits = |s: &mut Sampler| s.get_1d().to_bits() as u64;
+    let seed = lumis_math::rng::mix64((bits(sampler) << 32) | bits(sampler));
+    RNG.with(|r| *r.borrow_mut() = Pcg32::new(seed, 0));
+}
+
+pub(super) fn with_rng<R>(f: impl FnOnce(&mut Pcg32) -> R) -> R {
+    RNG.with(|r| f(&mut r.borrow_mut()))
+}
+
+/// A camera path's or gather ray's free flight along `ray` (up to `hit`)
+/// in `medium`: `beta` weighted, the medium's emission added to `emitted`.
+pub(super) fn flight(
+    ctx: &PhotonCtx,
+    medium: Option<u32>,
+    ray: &Ray,
+    hit: Option<&Hit>,
+    beta: &mut Rgb,
+    emitted: &mut Rgb,
+) -> Flight {
+    let Some(m) = medium else {
+        return Flight::Passed;
+    };
+    let len = ray.d.length();
+    let tmax = hit.map_or(f32::INFINITY, |h| h.t * len);
+    let med = &ctx.scene.media[m as usize];
+    with_rng(|rng| fly(med, ray.o, ray.d / len, tmax, rng, beta, Some(emitted)))
+}
+
+/// Next-event estimation at a surface point through media, weighted
+/// against `m2` BSDF-sampled gather rays.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn direct_at_surface(
+    ctx: &PhotonCtx,
+    x: &Hit,
+    bsdf: &crate::bsdf::SurfaceBsdf,
+    wo: Vec3,
+    medium: Option<u32>,
+    m2: u32,
+    sampler: &mut Sampler,
+    rays: &mut crate::integrator::RayCounts,
+) -> Rgb {
+    use crate::bsdf::TransportMode;
+    let ns = x.geom.ns;
+    let eval = |wi: Vec3| {
+        let f = bsdf.eval(wo, wi, TransportMode::Radiance) * wi.dot(ns).abs();
+        (f, bsdf.pdf(wo, wi, TransportMode::Radiance))
+    };
+    let at = volpath::Surface {
+        ng: x.geom.ng,
+        interface: ctx.scene.medium_interface(x),
+    };
+    let scene = ctx.scene;
+    with_rng(|rng| {
+        volpath::direct(
+            scene,
+            x.geom.p,
+            Some(at),
+            medium,
+            eval,
+            m2 as f32,
+            sampler,
+            rng,
+            rays,
+        )
+    })
+}
+
+/// Light scattered towards `wo` at `x` in medium `m` (a camera path's
+/// scattering event), without the throughput that brought it there.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn shade_medium(
+    ctx: &PhotonCtx,
+    x: Vec3,
+    wo: Vec3,
+    m: u32,
+    alpha: Alpha,
+    m2: u32,
+    depth: u32,
+    sampler: &mut Sampler,
+    rays: &mut crate::integrator::RayCounts,
+) -> Rgb {
+    let scene = ctx.scene;
+    let med = &scene.media[m as usize];
+    let phase = med.phase;
+    let eval = |wi: Vec3| {
+        let v = phase.p(wo, wi);
+        (Rgb::splat(v), v)
+    };
+    let mut l = with_rng(|rng| {
+        volpath::direct(scene, x, None, Some(m), eval, m2 as f32, sampler, rng, rays)
+    });
+    let (lc, sigma_s, delta_v, alpha) = caustic_volume_photons(ctx, x, wo, m, alpha, m2);
+    l += lc;
+    if m2 == 0 {
+        return l;
+    }
+    let mut gathered = Rgb::BLACK;
+    for _ in 0..m2 {
+        let Some(ps) = phase.sample(wo, sampler.get_2d()) else {
+            continue;
+        };
+        let g = super::gather::Gather {
+            origin: x,
+            ray: Ray::new(x, ps.wi),
+            medium: Some(m),
+            pdf: ps.pdf,
+            q1_cos: sigma_s,
+            q1_measure: delta_v,
+            alpha,
+            m2,
+        };
+        // The phase function is sampled exactly: its weight is 1.
+        gathered += super::gather::trace_gather(ctx, &g, depth, sampler, rays);
+    }
+    l + gathered / m2 as f32
+}
+
+/// `sigma_s(x)`'s mean over the channels, and `1 / sigma_s` per channel (0
+/// where a channel does not scatter).
+fn scattering(ctx: &PhotonCtx, m: u32, x: Vec3) -> (f32, Rgb) {
+    let s = ctx.scene.media[m as usize].point(x).sigma_s;
+    (s.average(), s.map(|v| if v > 0.0 { 1.0 / v } else { 0.0 }))
+}
+
+/// The caustic volume photons' estimate at `x`, each weighted by `w_1`;
+/// also `sigma_s` and `DeltaV` (what `q_1` counts photons over) and the
+/// `alpha` the gather rays share.
+fn caustic_volume_photons(
+    ctx: &PhotonCtx,
+    x: Vec3,
+    wo: Vec3,
+    m: u32,
+    alpha: Alpha,
+    m2: u32,
+) -> (Rgb, f32, f32, f32) {
+    let map = &ctx.maps.volume_caustic;
+    let s = ctx.s;
+    let phase = ctx.scene.media[m as usize].phase;
+    let (sigma_s, inv_sigma_s) = scattering(ctx, m, x);
+    FOUND.with(|cell| {
+        let mut found = cell.borrow_mut();
+        found.clear();
+        let r2 = match &ctx.maps.radii {
+            Some(radii) => {
+                let r2 = radii.caustic_r2(x);
+                map.within(x, r2.sqrt(), &mut found);
+                r2
+            }
+            None => map.knn(x, s.nearest, ctx.maps.max_radius, &mut found),
+        };
+        let delta_v = 4.0 / 3.0 * PI * r2 * r2.sqrt();
+        let alpha = alpha.effective(0.0);
+        if found.is_empty() || !(r2 > 0.0) {
+            return (Rgb::BLACK, sigma_s, delta_v, alpha);
+        }
+        let n = map.emitted() as f64;
+        let mut sum = Rgb::BLACK;
+        for &(i, _) in found.iter() {
+            let ph = map.photon(i);
+            let wj = ph.dir();
+            let f = phase.p(wo, wj);
+            let q_1 = if ctx.maps.targets.is_some() {
+                q1(
+                    1.0,
+                    ph.le(),
+                    sigma_s,
+                    delta_v,
+                    ph.power().luminance(),
+                    alpha,
+                )
+            } else {
+                q1(n, ph.le(), sigma_s, delta_v, ctx.maps.phi, alpha)
+            };
+            let w = w1(q_1, q2(m2, phase.pdf(wo, wj)), s.caustics, s.heuristic);
+            sum += ph.power() * (f * w);
+        }
+        (sum * inv_sigma_s / delta_v, sigma_s, delta_v, alpha)
+    })
+}
+
+/// `∫ p L_i` at `x` in medium `m` from the global volume photons (a gather
+/// ray's scattering point).
+pub(super) fn global_in_scattering(ctx: &PhotonCtx, x: Vec3, wo: Vec3, m: u32) -> Rgb {
+    let map = &ctx.maps.volume_global;
+    let phase = ctx.scene.media[m as usize].phase;
+    FOUND.with(|cell| {
+        let mut found = cell.borrow_mut();
+        found.clear();
+        let r2 = match &ctx.maps.radii {
+            Some(radii) => {
+                let r2 = radii.global_r2(x);
+                map.within(x, r2.sqrt(), &mut found);
+                r2
+            }
+            None => map.knn(
+                x,
+                ctx.s.nearest,
+                ctx.maps.max_radius * GLOBAL_RADIUS_SCALE,
+                &mut found,
+            ),
+        };
+        if found.is_empty() || !(r2 > 0.0) {
+            return Rgb::BLACK;
+        }
+        let mut sum = Rgb::BLACK;
+        for &(i, _) in found.iter() {
+            let ph = map.photon(i);
+            sum += ph.power() * phase.p(wo, ph.dir());
+        }
+        let delta_v = 4.0 / 3.0 * PI * r2 * r2.sqrt();
+        sum * scattering(ctx, m, x).1 / delta_v
+    })
+}
