@@ -4,6 +4,7 @@
 
 pub mod frame;
 pub mod mis;
+pub mod noise;
 pub mod rgb;
 pub mod rng;
 pub mod sampler;

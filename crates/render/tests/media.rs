@@ -245,3 +245,56 @@ fn media_render_the_same_on_one_and_two_threads() {
     };
     assert_eq!(bits(1), bits(2));
 }
+
+#[test]
+fn cloud_transmittance_agrees_with_quadrature() {
+    // pbrt-v4's procedural cloud in a box, bounded by sigma_t: ratio
+    // tracking against the optical depth integrated along the ray.
+    use lumis_render::media::Cloud;
+    let unit = Transform::new(lumis_math::Mat4::from_scale(Vec3::splat(0.5))).unwrap();
+    let cloud = Cloud::new(
+        Transform::IDENTITY,
+        unit,
+        Rgb::splat(0.4),
+        Rgb::splat(1.6),
+        1.0,
+        1.0,
+        5.0,
+    );
+    // Solid (density 1) below y = 0, as pbrt-v4's: 2 (0.5 - y) >= 1.
+    assert_eq!(cloud.density_at(Vec3::new(0.7, -0.1, 1.1)), 1.0);
+    let m = Medium {
+        kind: MediumKind::Cloud(cloud),
+        phase: Phase::HenyeyGreenstein(HenyeyGreenstein::new(0.0)),
+    };
+    let (o, d) = (
+        Vec3::new(-0.5, 0.55, 0.3),
+        Vec3::new(1.0, 0.2, 0.4).normalize(),
+    );
+    let steps = 20000;
+    let tmax = 3.0f32;
+    let mut tau = 0.0f64;
+    for i in 0..steps {
+        let p = o + d * ((i as f32 + 0.5) / steps as f32 * tmax);
+        if p.min_element() >= 0.0 && p.max_element() <= 2.0 {
+            let mp = m.point(p);
+            tau += (mp.sigma_a + mp.sigma_s).r as f64 * (tmax / steps as f32) as f64;
+        }
+    }
+    let exact = (-tau).exp();
+    assert!(
+        exact > 0.02 && exact < 0.9,
+        "a ray that tests something: {exact}"
+    );
+    let mut rng = Pcg32::new(5, 1);
+    let n = 100_000;
+    let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+    for _ in 0..n {
+        let t = track::transmittance(&m, o, d, tmax, &mut rng).r as f64;
+        sum += t;
+        sum2 += t * t;
+    }
+    let mean = sum / n as f64;
+    let se = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+    assert_close("cloud ratio tracking", (mean, se), exact, 0.0);
+}

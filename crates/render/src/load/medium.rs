@@ -1,15 +1,15 @@
 //! `MakeNamedMedium` descriptions to [`Medium`]s, and the names shapes and
 //! the camera use resolved to medium ids. Types: `homogeneous` (with
-//! pbrt-v4's presets), `uniformgrid`, `rgbgrid`; `cloud` and `nanovdb` get
-//! a homogeneous stand-in with a located warning.
+//! pbrt-v4's presets), `uniformgrid`, `rgbgrid`, `cloud`; `nanovdb` gets a
+//! homogeneous stand-in with a located warning.
 
 use super::medium_presets::PRESETS;
 use super::spectrum::{light_rgb, rgb_param};
 use super::Warnings;
 use crate::media::voxels::Voxels;
 use crate::media::{
-    Grid, GridEmission, HenyeyGreenstein, Homogeneous, Medium, MediumInterface, MediumKind, Phase,
-    RgbGrid,
+    Cloud, Grid, GridEmission, HenyeyGreenstein, Homogeneous, Medium, MediumInterface, MediumKind,
+    Phase, RgbGrid,
 };
 use lumis_math::spectrum::{xyz, xyz_to_linear_srgb, Spectrum, CIE_Y_INTEGRAL};
 use lumis_math::{Mat4, Rgb, Transform, Vec3};
@@ -84,24 +84,19 @@ fn build_medium(desc: &SceneDesc, m: &MediumDesc, w: &mut Warnings) -> Result<Me
         "homogeneous" => MediumKind::Homogeneous(homogeneous(desc, e, w)?),
         "uniformgrid" => MediumKind::Grid(uniform_grid(desc, m, w)?),
         "rgbgrid" => MediumKind::RgbGrid(rgb_grid(desc, m, w)?),
-        "cloud" | "nanovdb" => {
-            let density = p.get_float("density", 1.0)?;
-            let scale = p.get_float("scale", 1.0)? * density;
+        "cloud" => MediumKind::Cloud(cloud(desc, m, w)?),
+        "nanovdb" => {
+            let scale = p.get_float("scale", 1.0)?;
             let sigma_a = rgb_param(desc, p, "sigma_a")?.unwrap_or(Rgb::WHITE) * scale;
             let sigma_s = rgb_param(desc, p, "sigma_s")?.unwrap_or(Rgb::WHITE) * scale;
             for q in p.unused() {
                 q.mark_used();
             }
-            let what = if e.ty == "cloud" {
-                "its procedural density is not rendered"
-            } else {
-                "lumis has no NanoVDB reader"
-            };
             w.push(Diagnostic::warning(
                 &e.loc,
                 format!(
-                    "medium `{}`: type `{}` is not supported ({what}); it renders as a homogeneous medium with its sigma_a and sigma_s at density {density}",
-                    m.name, e.ty
+                    "medium `{}`: type `nanovdb` is not supported (lumis has no NanoVDB reader); it renders as a homogeneous medium with its sigma_a and sigma_s (times scale) at density 1",
+                    m.name
                 ),
             ));
             MediumKind::Homogeneous(Homogeneous {
@@ -337,6 +332,43 @@ fn uniform_grid(desc: &SceneDesc, m: &MediumDesc, w: &mut Warnings) -> Result<Gr
         sigma_s,
         Voxels { n, values: density },
         emission,
+    ))
+}
+
+fn cloud(desc: &SceneDesc, m: &MediumDesc, w: &mut Warnings) -> Result<Cloud, Diagnostic> {
+    let e = &m.entity;
+    let p = &e.params;
+    let sigma_a = rgb_param(desc, p, "sigma_a")?.unwrap_or(Rgb::WHITE);
+    let sigma_s = rgb_param(desc, p, "sigma_s")?.unwrap_or(Rgb::WHITE);
+    check_coefficients(e, sigma_a, sigma_s)?;
+    let density = p.get_float("density", 1.0)?;
+    let wispiness = p.get_float("wispiness", 1.0)?;
+    let frequency = p.get_float("frequency", 5.0)?;
+    let unit = unit_from_world(m)?;
+    w.unused(
+        p,
+        "medium \"cloud\"",
+        &[
+            "type",
+            "sigma_a",
+            "sigma_s",
+            "density",
+            "wispiness",
+            "frequency",
+            "p0",
+            "p1",
+            "g",
+        ],
+    );
+    let medium_from_world = m.medium_to_world.inverse();
+    Ok(Cloud::new(
+        medium_from_world,
+        unit,
+        sigma_a,
+        sigma_s,
+        density,
+        wispiness,
+        frequency,
     ))
 }
 

@@ -3,7 +3,7 @@
 //!
 //! Media are a closed set, as materials and lights are: one variant of
 //! [`MediumKind`] per file (`homogeneous.rs`, `grid.rs` for `uniformgrid`,
-//! `rgb_grid.rs`), dispatched by `match`. To add one, write its file with
+//! `rgb_grid.rs`, `cloud.rs`), dispatched by `match`. To add one, write its file with
 //! `point` (the coefficients at a world point) and a way to bound them along
 //! a ray (one constant, or a [`voxels::Majorants`] grid), add the variant
 //! and its arms in [`Medium::point`] and [`Medium::majorants`], and its
@@ -19,6 +19,7 @@
 //! angle), add the variant and its arms here, and a chi-square test in
 //! `tests/phase_chi2.rs`.
 
+mod cloud;
 mod grid;
 mod henyey_greenstein;
 mod homogeneous;
@@ -26,6 +27,7 @@ mod rgb_grid;
 pub mod track;
 pub mod voxels;
 
+pub use cloud::Cloud;
 pub use grid::{Grid, GridEmission};
 pub use henyey_greenstein::HenyeyGreenstein;
 pub use homogeneous::Homogeneous;
@@ -47,6 +49,7 @@ pub enum MediumKind {
     Homogeneous(Homogeneous),
     Grid(Grid),
     RgbGrid(RgbGrid),
+    Cloud(Cloud),
 }
 
 /// A medium: its coefficients and its phase function.
@@ -63,6 +66,7 @@ impl Medium {
             MediumKind::Homogeneous(m) => m.point(),
             MediumKind::Grid(m) => m.point(p),
             MediumKind::RgbGrid(m) => m.point(p),
+            MediumKind::Cloud(m) => m.point(p),
         }
     }
 
@@ -71,6 +75,7 @@ impl Medium {
             MediumKind::Homogeneous(m) => !m.le.is_black(),
             MediumKind::Grid(m) => m.is_emissive(),
             MediumKind::RgbGrid(m) => m.le.is_some(),
+            MediumKind::Cloud(_) => false,
         }
     }
 
@@ -92,6 +97,10 @@ impl Medium {
                 m.majorants.walk(u.point(o), u.vector(d), tmax, f)
             }
             MediumKind::RgbGrid(m) => {
+                let u = &m.unit_from_world;
+                m.majorants.walk(u.point(o), u.vector(d), tmax, f)
+            }
+            MediumKind::Cloud(m) => {
                 let u = &m.unit_from_world;
                 m.majorants.walk(u.point(o), u.vector(d), tmax, f)
             }
