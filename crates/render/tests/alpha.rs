@@ -126,3 +126,22 @@ fn negative_alpha_is_a_located_error() {
     };
     assert!(e.contains("a.pbrt:16:") && e.contains("[0, 1]"), "{e}");
 }
+
+#[test]
+fn alpha_on_an_emitter_is_ignored_with_a_warning() {
+    let text = cutout_scene("", "").replace(
+        r#"Shape "trianglemesh" "point3 P" [ -9 -9 -2"#,
+        r#"Shape "trianglemesh" "float alpha" 0 "point3 P" [ -9 -9 -2"#,
+    );
+    let l = lumis_render::load::load_text(
+        &text,
+        "e.pbrt",
+        std::path::Path::new("."),
+        &Overrides::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(l.warnings.len(), 1, "{:?}", l.warnings);
+    let w = l.warnings[0].to_string();
+    assert!(w.contains("e.pbrt:12:") && w.contains("emitting"), "{w}");
+    assert!(!l.scene.has_alpha);
+}

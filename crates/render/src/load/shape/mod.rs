@@ -44,7 +44,12 @@ pub struct Surfaces<'a, 't> {
 impl Surfaces<'_, '_> {
     /// The material id of shape `s`: its material, on its medium interface
     /// (if it changes the medium), with its `alpha` cutout (if any).
-    fn material(&mut self, desc: &SceneDesc, s: &ShapeDesc) -> Result<u32, Diagnostic> {
+    fn material(
+        &mut self,
+        desc: &SceneDesc,
+        s: &ShapeDesc,
+        w: &mut Warnings,
+    ) -> Result<u32, Diagnostic> {
         let mut material = self.mats.id(desc, &s.material)?;
         if let Some(mi) = self.media.interface(&s.media)? {
             material = self.mats.with_media(material, mi);
@@ -60,6 +65,19 @@ impl Surfaces<'_, '_> {
                 return Err(Diagnostic::error(
                     &loc,
                     format!("`alpha` must be in [0, 1] (above 1 counts as 1), found {a}"),
+                ));
+            }
+            // Light sampling picks points on an emitter whatever its alpha:
+            // cutting rays through it would make the two disagree.
+            _ if s.area_light.is_some() => {
+                let loc = s
+                    .entity
+                    .params
+                    .loc_of("alpha")
+                    .unwrap_or_else(|| s.entity.loc.clone());
+                w.push(Diagnostic::warning(
+                    &loc,
+                    "`alpha` on an emitting shape is ignored (the whole shape emits and is solid)",
                 ));
             }
             alpha => material = self.mats.with_alpha(material, alpha),
@@ -114,7 +132,7 @@ fn add_shapes(
 ) -> Result<Vec<PrimInfo>, Diagnostic> {
     let mut prims = Vec::new();
     for s in list {
-        let material = surf.material(desc, s)?;
+        let material = surf.material(desc, s, w)?;
         let new_prims = match build_shape(desc, s, w)? {
             Some(built) => store(shapes, built),
             None => continue,
