@@ -33,19 +33,10 @@ pub fn sample_direct_n(
     sampler: &mut Sampler,
     rays: &mut super::RayCounts,
 ) -> Rgb {
-    let ul = sampler.get_1d();
-    let u = sampler.get_2d();
-    let Some((li, pmf)) = scene.light_sampler.sample(ul) else {
-        return Rgb::BLACK;
-    };
-    let light = &scene.lights[li as usize];
     let p = hit.geom.p;
-    let Some(ls) = light.sample_li(&scene.shapes, p, u) else {
+    let Some((ls, pmf)) = sample_light(scene, p, sampler) else {
         return Rgb::BLACK;
     };
-    if ls.pdf == 0.0 || ls.li.is_black() {
-        return Rgb::BLACK;
-    }
     let f = bsdf.eval(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(hit.geom.ns).abs();
     if f.is_black() {
         return Rgb::BLACK;
@@ -61,6 +52,18 @@ pub fn sample_direct_n(
     let bsdf_pdf = bsdf.pdf(wo, ls.wi, TransportMode::Radiance);
     let w = power_heuristic(1.0, light_pdf, n_bsdf, bsdf_pdf);
     f * ls.li * (w / light_pdf)
+}
+
+/// One light chosen by power and one point on it, seen from `p`, with the
+/// light's selection probability; `None` when it gives nothing. Consumes
+/// three sampler dimensions.
+#[inline]
+pub fn sample_light(scene: &Scene, p: Vec3, sampler: &mut Sampler) -> Option<(LiSample, f32)> {
+    let ul = sampler.get_1d();
+    let u = sampler.get_2d();
+    let (li, pmf) = scene.light_sampler.sample(ul)?;
+    let ls = scene.lights[li as usize].sample_li(&scene.shapes, p, u)?;
+    (ls.pdf != 0.0 && !ls.li.is_black()).then_some((ls, pmf))
 }
 
 /// The shadow ray from `p` (geometric normal `ng`) to light sample `ls`:

@@ -70,18 +70,25 @@ pub fn li(
             eta_scale *= bs.eta * bs.eta;
         }
         ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
-        // Russian roulette on the throughput without the radiance scaling of refraction.
-        let rr = (beta * eta_scale).max_component();
-        if rr < 1.0 && depth > 1 {
-            let q = (1.0 - rr).max(0.0);
-            if sampler.get_1d() < q {
-                break;
-            }
-            beta /= 1.0 - q;
-        }
-        if !beta.is_finite() {
+        if !roulette(&mut beta, eta_scale, depth, sampler) {
             break;
         }
     }
     l
+}
+
+/// Russian roulette from the second bounce on, on the throughput without
+/// refraction's radiance scaling; false when the path ends (or its
+/// throughput is not finite). Shared with `volpath`.
+#[inline]
+pub(super) fn roulette(beta: &mut Rgb, eta_scale: f32, depth: u32, sampler: &mut Sampler) -> bool {
+    let rr = (*beta * eta_scale).max_component();
+    if rr < 1.0 && depth > 1 {
+        let q = (1.0 - rr).max(0.0);
+        if sampler.get_1d() < q {
+            return false;
+        }
+        *beta /= 1.0 - q;
+    }
+    beta.is_finite()
 }

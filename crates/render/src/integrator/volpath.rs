@@ -17,13 +17,14 @@
 //! - Rays keep their medium through surfaces that do not change it; at one
 //!   that does, the side the ray leaves on picks the next.
 
-use super::lighting::{emitted_mis, escaped_mis, shadow_ray};
+use super::lighting::{emitted_mis, escaped_mis, sample_light, shadow_ray};
+use super::path::roulette;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::{spawn_ray, spawn_ray_to};
 use crate::geometry::Ray;
 use crate::light::LiSample;
 use crate::media::{track, Medium, MediumInterface};
-use crate::scene::Scene;
+use crate::scene::{Hit, Scene};
 use lumis_math::mis::power_heuristic;
 use lumis_math::{Pcg32, Rgb, Sampler, Vec3};
 
@@ -83,6 +84,56 @@ pub(crate) fn fly(
         true
     });
     flight
+}
+
+/// Flies `ray` through media and across pure boundaries up to the next
+/// surface that scatters (or out of the scene): `hit` becomes that
+/// surface, `medium` and `ray` follow the crossings (each counted in
+/// `crossed`), `beta` is weighted and the media's emission added to
+/// `emitted` when asked for. Used by `photon` (photons, camera paths,
+/// gather rays).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn advance(
+    scene: &Scene,
+    medium: &mut Option<u32>,
+    ray: &mut Ray,
+    hit: &mut Option<Hit>,
+    rng: &mut Pcg32,
+    beta: &mut Rgb,
+    mut emitted: Option<&mut Rgb>,
+    crossed: &mut u64,
+) -> Flight {
+    for _ in 0..MAX_CROSSINGS {
+        if let Some(m) = *medium {
+            let len = ray.d.length();
+            let tmax = hit.as_ref().map_or(f32::INFINITY, |h| h.t * len);
+            let med = &scene.media[m as usize];
+            let f = fly(
+                med,
+                ray.o,
+                ray.d / len,
+                tmax,
+                rng,
+                beta,
+                emitted.as_deref_mut(),
+            );
+            if !matches!(f, Flight::Passed) {
+                return f;
+            }
+        }
+        match hit.as_ref() {
+            Some(h) if scene.is_boundary(h) => {
+                if let Some(mi) = scene.medium_interface(h) {
+                    *medium = mi.towards(ray.d, h.geom.ng);
+                }
+                *ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
+                *crossed += 1;
+                *hit = scene.intersect(ray);
+            }
+            _ => break,
+        }
+    }
+    Flight::Passed
 }
 
 pub fn li(
@@ -229,20 +280,6 @@ pub fn li(
     l
 }
 
-/// Russian roulette on the throughput without refraction's radiance
-/// scaling, as `path`'s; false when the path ends.
-fn roulette(beta: &mut Rgb, eta_scale: f32, depth: u32, sampler: &mut Sampler) -> bool {
-    let rr = (*beta * eta_scale).max_component();
-    if rr < 1.0 && depth > 1 {
-        let q = (1.0 - rr).max(0.0);
-        if sampler.get_1d() < q {
-            return false;
-        }
-        *beta /= 1.0 - q;
-    }
-    beta.is_finite()
-}
-
 /// The surface a shadow ray leaves from.
 #[derive(Clone, Copy)]
 pub(crate) struct Surface {
@@ -268,18 +305,9 @@ pub(crate) fn direct(
     rng: &mut Pcg32,
     rays: &mut super::RayCounts,
 ) -> Rgb {
-    let ul = sampler.get_1d();
-    let u = sampler.get_2d();
-    let Some((li, pmf)) = scene.light_sampler.sample(ul) else {
+    let Some((ls, pmf)) = sample_light(scene, p, sampler) else {
         return Rgb::BLACK;
     };
-    let light = &scene.lights[li as usize];
-    let Some(ls) = light.sample_li(&scene.shapes, p, u) else {
-        return Rgb::BLACK;
-    };
-    if ls.pdf == 0.0 || ls.li.is_black() {
-        return Rgb::BLACK;
-    }
     let (f, scatter_pdf) = eval(ls.wi);
     if f.is_black() {
         return Rgb::BLACK;

@@ -9,7 +9,7 @@ use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::integrator::lighting::{emitted_mis_n, escaped_mis_n};
-use crate::integrator::volpath::{Flight, MAX_CROSSINGS};
+use crate::integrator::volpath::Flight;
 use lumis_math::{Rgb, Sampler, Vec2, Vec3};
 
 /// Radiance along a camera ray.
@@ -75,33 +75,29 @@ fn trace_camera(
         if scene.has_media() {
             // Free flights, and pure boundaries crossed; a path that
             // scatters in a medium is shaded there and ends.
-            for _ in 0..MAX_CROSSINGS {
-                let mut emitted = Rgb::BLACK;
-                let f = volume::flight(ctx, medium, &ray, hit.as_ref(), &mut beta, &mut emitted);
-                l += emitted;
-                match f {
-                    Flight::Absorbed => return l,
-                    Flight::Scattered(p) => {
-                        let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || 0.0);
-                        let m = medium.expect("a flight scatters in a medium");
-                        let wo = -ray.d.normalize();
-                        let m2 = ctx.s.gather_rays;
-                        return l + beta
-                            * volume::shade_medium(ctx, p, wo, m, alpha, m2, depth, sampler, rays);
-                    }
-                    Flight::Passed => {}
+            let mut emitted = Rgb::BLACK;
+            let crossed = &mut rays.indirect;
+            let f = volume::advance(
+                ctx,
+                &mut medium,
+                &mut ray,
+                &mut hit,
+                &mut beta,
+                &mut emitted,
+                crossed,
+            );
+            l += emitted;
+            match f {
+                Flight::Absorbed => return l,
+                Flight::Scattered(p) => {
+                    let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || 0.0);
+                    let m = medium.expect("a flight scatters in a medium");
+                    let wo = -ray.d.normalize();
+                    let m2 = ctx.s.gather_rays;
+                    return l + beta
+                        * volume::shade_medium(ctx, p, wo, m, alpha, m2, depth, sampler, rays);
                 }
-                match &hit {
-                    Some(h) if scene.is_boundary(h) => {
-                        if let Some(mi) = scene.medium_interface(h) {
-                            medium = mi.towards(ray.d, h.geom.ng);
-                        }
-                        ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
-                        rays.indirect += 1;
-                        hit = scene.intersect(&ray);
-                    }
-                    _ => break,
-                }
+                Flight::Passed => {}
             }
         }
         let Some(hit) = hit else {

@@ -13,7 +13,7 @@ use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::integrator::lighting::{emitted_mis_n, escaped_mis_n, sample_direct_n};
-use crate::integrator::volpath::{Flight, MAX_CROSSINGS};
+use crate::integrator::volpath::Flight;
 use crate::scene::{Hit, Scene};
 use lumis_math::{Rgb, Sampler, Vec2, Vec3, PI};
 use std::cell::RefCell;
@@ -160,30 +160,26 @@ pub(super) fn trace_gather(
         if scene.has_media() {
             // Free flights, and pure boundaries crossed; a gather ray that
             // scatters reads the global volume photons there.
-            for _ in 0..MAX_CROSSINGS {
-                let mut emitted = Rgb::BLACK;
-                let f = volume::flight(ctx, medium, &ray, hit.as_ref(), &mut t, &mut emitted);
-                acc += emitted;
-                match f {
-                    Flight::Absorbed => return acc,
-                    Flight::Scattered(p) => {
-                        let wo = -ray.d.normalize();
-                        let m = medium.expect("a flight scatters in a medium");
-                        return acc + t * volume::global_in_scattering(ctx, p, wo, m);
-                    }
-                    Flight::Passed => {}
+            let mut emitted = Rgb::BLACK;
+            let crossed = &mut rays.gather;
+            let f = volume::advance(
+                ctx,
+                &mut medium,
+                &mut ray,
+                &mut hit,
+                &mut t,
+                &mut emitted,
+                crossed,
+            );
+            acc += emitted;
+            match f {
+                Flight::Absorbed => return acc,
+                Flight::Scattered(p) => {
+                    let wo = -ray.d.normalize();
+                    let m = medium.expect("a flight scatters in a medium");
+                    return acc + t * volume::global_in_scattering(ctx, p, wo, m);
                 }
-                match &hit {
-                    Some(h) if scene.is_boundary(h) => {
-                        if let Some(mi) = scene.medium_interface(h) {
-                            medium = mi.towards(ray.d, h.geom.ng);
-                        }
-                        ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
-                        rays.gather += 1;
-                        hit = scene.intersect(&ray);
-                    }
-                    _ => break,
-                }
+                Flight::Passed => {}
             }
         }
         let Some(h) = hit else {

@@ -7,7 +7,7 @@ use super::photon::Photon;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
-use crate::integrator::volpath::{fly, Flight, MAX_CROSSINGS};
+use crate::integrator::volpath::{advance, Flight};
 use crate::media::LightMedium;
 use crate::scene::Scene;
 use lumis_math::{Pcg32, Rgb, Sampler, SamplerKind, Vec3};
@@ -168,47 +168,41 @@ fn trace_one(
         if let Some(rng) = rng.as_mut() {
             // Free flights, and pure boundaries crossed, up to the next
             // surface that scatters or a scattering event in a medium.
-            for _ in 0..MAX_CROSSINGS {
-                if let Some(m) = medium {
-                    let len = ray.d.length();
-                    let d = ray.d / len;
-                    let tmax = hit.as_ref().map_or(f32::INFINITY, |h| h.t * len);
-                    let med = &scene.media[m as usize];
-                    match fly(med, ray.o, d, tmax, rng, &mut power, None) {
-                        Flight::Absorbed => return,
-                        Flight::Scattered(p) => {
-                            match kind {
-                                MapKind::Global => {
-                                    out.volume.push(Photon::new(p, power, -d, le_lum))
-                                }
-                                MapKind::Caustic => {
-                                    if depth > 0 && specular_only {
-                                        out.volume.push(Photon::new(p, power, -d, le_lum));
-                                    }
-                                    return;
-                                }
+            let f = advance(
+                scene,
+                &mut medium,
+                &mut ray,
+                &mut hit,
+                rng,
+                &mut power,
+                None,
+                rays,
+            );
+            match f {
+                Flight::Absorbed => return,
+                Flight::Scattered(p) => {
+                    let wo = -ray.d.normalize();
+                    match kind {
+                        MapKind::Global => out.volume.push(Photon::new(p, power, wo, le_lum)),
+                        MapKind::Caustic => {
+                            if depth > 0 && specular_only {
+                                out.volume.push(Photon::new(p, power, wo, le_lum));
                             }
-                            let Some(ps) = med.phase.sample(-d, sampler.get_2d()) else {
-                                return;
-                            };
-                            specular_only = false;
-                            ray = Ray::new(p, ps.wi);
-                            continue 'bounce;
+                            return;
                         }
-                        Flight::Passed => {}
                     }
+                    let Some(m) = medium else {
+                        return;
+                    };
+                    let Some(ps) = scene.media[m as usize].phase.sample(wo, sampler.get_2d())
+                    else {
+                        return;
+                    };
+                    specular_only = false;
+                    ray = Ray::new(p, ps.wi);
+                    continue 'bounce;
                 }
-                match &hit {
-                    Some(h) if scene.is_boundary(h) => {
-                        if let Some(mi) = scene.medium_interface(h) {
-                            medium = mi.towards(ray.d, h.geom.ng);
-                        }
-                        ray = spawn_ray(h.geom.p, h.geom.ng, ray.d);
-                        *rays += 1;
-                        hit = scene.intersect(&ray);
-                    }
-                    _ => break,
-                }
+                Flight::Passed => {}
             }
         }
         let Some(hit) = hit else {

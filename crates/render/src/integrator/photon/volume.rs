@@ -29,7 +29,7 @@ use super::gather::PhotonCtx;
 use super::weights::{q1, q2, w1, Alpha};
 use super::GLOBAL_RADIUS_SCALE;
 use crate::geometry::Ray;
-use crate::integrator::volpath::{self, fly, Flight};
+use crate::integrator::volpath::{self, Flight};
 use crate::scene::Hit;
 use lumis_math::{Pcg32, Rgb, Sampler, Vec3, PI};
 use std::cell::RefCell;
@@ -52,23 +52,20 @@ pub(super) fn with_rng<R>(f: impl FnOnce(&mut Pcg32) -> R) -> R {
     RNG.with(|r| f(&mut r.borrow_mut()))
 }
 
-/// A camera path's or gather ray's free flight along `ray` (up to `hit`)
-/// in `medium`: `beta` weighted, the medium's emission added to `emitted`.
-pub(super) fn flight(
+/// [`volpath::advance`] with the camera sample's stream: flies `ray`
+/// through media and across pure boundaries up to the next surface that
+/// scatters (`hit`), or to a scattering or absorption in a medium.
+pub(super) fn advance(
     ctx: &PhotonCtx,
-    medium: Option<u32>,
-    ray: &Ray,
-    hit: Option<&Hit>,
+    medium: &mut Option<u32>,
+    ray: &mut Ray,
+    hit: &mut Option<Hit>,
     beta: &mut Rgb,
     emitted: &mut Rgb,
+    crossed: &mut u64,
 ) -> Flight {
-    let Some(m) = medium else {
-        return Flight::Passed;
-    };
-    let len = ray.d.length();
-    let tmax = hit.map_or(f32::INFINITY, |h| h.t * len);
-    let med = &ctx.scene.media[m as usize];
-    with_rng(|rng| fly(med, ray.o, ray.d / len, tmax, rng, beta, Some(emitted)))
+    let scene = ctx.scene;
+    with_rng(|rng| volpath::advance(scene, medium, ray, hit, rng, beta, Some(emitted), crossed))
 }
 
 /// Next-event estimation at a surface point through media, weighted
@@ -160,6 +157,27 @@ pub(super) fn shade_medium(
     l + gathered / m2 as f32
 }
 
+/// The photons of `map` around `x` into `found`, and the squared radius:
+/// the iteration's (`r2_of` the radii) or, with one map, that of the
+/// `nearest` photons within `max_radius`.
+fn query(
+    ctx: &PhotonCtx,
+    map: &super::map::PhotonMap,
+    x: Vec3,
+    r2_of: impl Fn(&super::Radii) -> f32,
+    max_radius: f32,
+    found: &mut Vec<(u32, f32)>,
+) -> f32 {
+    match &ctx.maps.radii {
+        Some(radii) => {
+            let r2 = r2_of(radii);
+            map.within(x, r2.sqrt(), found);
+            r2
+        }
+        None => map.knn(x, ctx.s.nearest, max_radius, found),
+    }
+}
+
 /// `sigma_s(x)`'s mean over the channels, and `1 / sigma_s` per channel (0
 /// where a channel does not scatter).
 fn scattering(ctx: &PhotonCtx, m: u32, x: Vec3) -> (f32, Rgb) {
@@ -185,14 +203,14 @@ fn caustic_volume_photons(
     FOUND.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
-        let r2 = match &ctx.maps.radii {
-            Some(radii) => {
-                let r2 = radii.caustic_r2(x);
-                map.within(x, r2.sqrt(), &mut found);
-                r2
-            }
-            None => map.knn(x, s.nearest, ctx.maps.max_radius, &mut found),
-        };
+        let r2 = query(
+            ctx,
+            map,
+            x,
+            |r| r.caustic_r2(x),
+            ctx.maps.max_radius,
+            &mut found,
+        );
         let delta_v = 4.0 / 3.0 * PI * r2 * r2.sqrt();
         let alpha = alpha.effective(0.0);
         if found.is_empty() || !(r2 > 0.0) {
@@ -231,19 +249,8 @@ pub(super) fn global_in_scattering(ctx: &PhotonCtx, x: Vec3, wo: Vec3, m: u32) -
     FOUND.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
-        let r2 = match &ctx.maps.radii {
-            Some(radii) => {
-                let r2 = radii.global_r2(x);
-                map.within(x, r2.sqrt(), &mut found);
-                r2
-            }
-            None => map.knn(
-                x,
-                ctx.s.nearest,
-                ctx.maps.max_radius * GLOBAL_RADIUS_SCALE,
-                &mut found,
-            ),
-        };
+        let max = ctx.maps.max_radius * GLOBAL_RADIUS_SCALE;
+        let r2 = query(ctx, map, x, |r| r.global_r2(x), max, &mut found);
         if found.is_empty() || !(r2 > 0.0) {
             return Rgb::BLACK;
         }
