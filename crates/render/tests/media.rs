@@ -203,12 +203,11 @@ fn delta_and_ratio_tracking_agree_with_quadrature_on_random_grids() {
             // Delta tracking, one channel at a time: a real collision with
             // probability sigma_t / majorant ends the flight.
             for (c, survived) in survived.iter_mut().enumerate() {
-                let got_through =
-                    track::collisions(&m, o, d, tmax, &mut rng, |rng, _, _, mp, maj| {
-                        let st = mp.sigma_a[c] + mp.sigma_s[c];
-                        assert!(st <= maj * 1.0001, "majorant {maj} below sigma_t {st}");
-                        rng.next_f32() >= st / maj
-                    });
+                let got_through = track::collisions(&m, o, d, tmax, &mut rng, |rng, _, mp, maj| {
+                    let st = mp.sigma_a[c] + mp.sigma_s[c];
+                    assert!(st <= maj * 1.0001, "majorant {maj} below sigma_t {st}");
+                    rng.next_f32() >= st / maj
+                });
                 *survived += got_through as u32 as f64;
             }
         }

@@ -3,9 +3,10 @@
 //! participating media take the volumetric tracer of `volpath.rs`.
 
 use super::lighting::{emitted_mis, escaped_mis, sample_direct};
-use crate::bsdf::TransportMode;
+use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
+use crate::scene::Hit;
 use crate::scene::Scene;
 use lumis_math::{Rgb, Sampler, Vec3};
 
@@ -20,11 +21,7 @@ pub fn li(
         return super::volpath::li(scene, ray, sampler, max_depth, rays);
     }
     let mut l = Rgb::BLACK;
-    let mut beta = Rgb::WHITE;
-    let mut specular_bounce = false;
-    let mut eta_scale = 1.0f32;
-    let mut p_prev = Vec3::ZERO;
-    let mut pdf_prev = 0.0f32;
+    let mut st = PathState::new();
     let mut depth = 0u32;
     loop {
         if depth == 0 {
@@ -32,19 +29,12 @@ pub fn li(
         } else {
             rays.indirect += 1;
         }
+        let count_fully = depth == 0 || st.specular_bounce;
         let Some(hit) = scene.intersect(&ray) else {
-            l += beta * escaped_mis(scene, &ray, p_prev, pdf_prev, depth == 0 || specular_bounce);
+            l += st.beta * escaped_mis(scene, &ray, st.p_prev, st.pdf_prev, count_fully);
             break;
         };
-        l += beta
-            * emitted_mis(
-                scene,
-                &hit,
-                &ray,
-                p_prev,
-                pdf_prev,
-                depth == 0 || specular_bounce,
-            );
+        l += st.beta * emitted_mis(scene, &hit, &ray, st.p_prev, st.pdf_prev, count_fully);
         if depth == max_depth {
             break;
         }
@@ -52,29 +42,68 @@ pub fn li(
         let bsdf = scene.bsdf(&hit, -ray.d);
         let wo = -ray.d;
         if !bsdf.is_delta() {
-            l += beta * sample_direct(scene, &hit, &bsdf, wo, sampler, rays);
+            l += st.beta * sample_direct(scene, &hit, &bsdf, wo, sampler, rays);
         }
-        let uc = sampler.get_1d();
-        let u = sampler.get_2d();
-        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+        let Some(wi) = st.bounce(&hit, &bsdf, wo, sampler) else {
             break;
         };
-        if bs.pdf == 0.0 || bs.f.is_black() {
-            break;
-        }
-        beta *= bs.weight(hit.geom.ns);
-        specular_bounce = bs.delta;
-        pdf_prev = bs.pdf;
-        p_prev = hit.geom.p;
-        if bs.transmission {
-            eta_scale *= bs.eta * bs.eta;
-        }
-        ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
-        if !roulette(&mut beta, eta_scale, depth, sampler) {
+        ray = spawn_ray(hit.geom.p, hit.geom.ng, wi);
+        if !roulette(&mut st.beta, st.eta_scale, depth, sampler) {
             break;
         }
     }
     l
+}
+
+/// What a path carries from one vertex to the next: its throughput,
+/// whether the last bounce was specular, the radiance scaling of
+/// refractions (which roulette leaves out), and the previous vertex with
+/// the density it sampled the direction by (for emission's MIS weight).
+/// Shared with `volpath`.
+pub(super) struct PathState {
+    pub beta: Rgb,
+    pub specular_bounce: bool,
+    pub eta_scale: f32,
+    pub p_prev: Vec3,
+    pub pdf_prev: f32,
+}
+
+impl PathState {
+    pub fn new() -> PathState {
+        PathState {
+            beta: Rgb::WHITE,
+            specular_bounce: false,
+            eta_scale: 1.0,
+            p_prev: Vec3::ZERO,
+            pdf_prev: 0.0,
+        }
+    }
+
+    /// Samples the BSDF at `hit` (three sampler dimensions) and moves past
+    /// it: the new direction, or `None` where the path ends.
+    #[inline]
+    pub fn bounce(
+        &mut self,
+        hit: &Hit,
+        bsdf: &SurfaceBsdf,
+        wo: Vec3,
+        sampler: &mut Sampler,
+    ) -> Option<Vec3> {
+        let uc = sampler.get_1d();
+        let u = sampler.get_2d();
+        let bs = bsdf.sample(wo, uc, u, TransportMode::Radiance)?;
+        if bs.pdf == 0.0 || bs.f.is_black() {
+            return None;
+        }
+        self.beta *= bs.weight(hit.geom.ns);
+        self.specular_bounce = bs.delta;
+        self.pdf_prev = bs.pdf;
+        self.p_prev = hit.geom.p;
+        if bs.transmission {
+            self.eta_scale *= bs.eta * bs.eta;
+        }
+        Some(bs.wi)
+    }
 }
 
 /// Russian roulette from the second bounce on, on the throughput without

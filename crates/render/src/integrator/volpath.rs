@@ -18,8 +18,8 @@
 //!   that does, the side the ray leaves on picks the next.
 
 use super::lighting::{emitted_mis, escaped_mis, sample_light, shadow_ray};
-use super::path::roulette;
-use crate::bsdf::TransportMode;
+use super::path::{roulette, PathState};
+use crate::bsdf::{SurfaceBsdf, TransportMode};
 use crate::geometry::ray::{spawn_ray, spawn_ray_to};
 use crate::geometry::Ray;
 use crate::light::LiSample;
@@ -56,7 +56,7 @@ pub(crate) fn fly(
     mut emitted: Option<&mut Rgb>,
 ) -> Flight {
     let mut flight = Flight::Passed;
-    track::collisions(medium, o, d, tmax, rng, |rng, _, p, mp, maj| {
+    track::collisions(medium, o, d, tmax, rng, |rng, p, mp, maj| {
         if let Some(e) = emitted.as_deref_mut() {
             if !mp.le.is_black() {
                 *e += *beta * mp.sigma_a * mp.le / maj;
@@ -86,6 +86,39 @@ pub(crate) fn fly(
     flight
 }
 
+/// [`fly`] in medium `m` along `ray` (any length of direction) up to `hit`,
+/// or without end.
+fn fly_ray(
+    scene: &Scene,
+    m: u32,
+    ray: &Ray,
+    hit: Option<&Hit>,
+    rng: &mut Pcg32,
+    beta: &mut Rgb,
+    emitted: Option<&mut Rgb>,
+) -> Flight {
+    let len = ray.d.length();
+    let tmax = hit.map_or(f32::INFINITY, |h| h.t * len);
+    fly(
+        &scene.media[m as usize],
+        ray.o,
+        ray.d / len,
+        tmax,
+        rng,
+        beta,
+        emitted,
+    )
+}
+
+/// The stream free flights draw from for one sample (they take an
+/// unbounded number of random numbers): seeded from two of the sample's
+/// own dimensions, as pbrt-v4 does, so images do not depend on threads.
+pub(crate) fn flight_stream(sampler: &mut Sampler) -> Pcg32 {
+    let bits = |s: &mut Sampler| s.get_1d().to_bits() as u64;
+    let seed = (bits(sampler) << 32) | bits(sampler);
+    Pcg32::new(lumis_math::rng::mix64(seed), 0)
+}
+
 /// Flies `ray` through media and across pure boundaries up to the next
 /// surface that scatters (or out of the scene): `hit` becomes that
 /// surface, `medium` and `ray` follow the crossings (each counted in
@@ -105,14 +138,11 @@ pub(crate) fn advance(
 ) -> Flight {
     for _ in 0..MAX_CROSSINGS {
         if let Some(m) = *medium {
-            let len = ray.d.length();
-            let tmax = hit.as_ref().map_or(f32::INFINITY, |h| h.t * len);
-            let med = &scene.media[m as usize];
-            let f = fly(
-                med,
-                ray.o,
-                ray.d / len,
-                tmax,
+            let f = fly_ray(
+                scene,
+                m,
+                ray,
+                hit.as_ref(),
                 rng,
                 beta,
                 emitted.as_deref_mut(),
@@ -143,17 +173,10 @@ pub fn li(
     max_depth: u32,
     rays: &mut super::RayCounts,
 ) -> Rgb {
-    // Free flights take an unbounded number of random numbers: a stream
-    // seeded from the sample's own dimensions (as pbrt-v4 does).
-    let seed = ((sampler.get_1d().to_bits() as u64) << 32) | sampler.get_1d().to_bits() as u64;
-    let mut rng = Pcg32::new(lumis_math::rng::mix64(seed), 0);
+    let mut rng = flight_stream(sampler);
     let mut medium = scene.camera_medium;
     let mut l = Rgb::BLACK;
-    let mut beta = Rgb::WHITE;
-    let mut specular_bounce = false;
-    let mut eta_scale = 1.0f32;
-    let mut p_prev = Vec3::ZERO;
-    let mut pdf_prev = 0.0f32;
+    let mut st = PathState::new();
     let mut depth = 0u32;
     let mut crossings = 0u32;
     let mut first = true;
@@ -166,33 +189,25 @@ pub fn li(
         }
         let hit = scene.intersect(&ray);
         if let Some(m) = medium {
-            let len = ray.d.length();
-            let d = ray.d / len;
-            let tmax = hit.as_ref().map_or(f32::INFINITY, |h| h.t * len);
-            let med = &scene.media[m as usize];
             let emit = (depth < max_depth).then_some(&mut l);
-            match fly(med, ray.o, d, tmax, &mut rng, &mut beta, emit) {
+            match fly_ray(scene, m, &ray, hit.as_ref(), &mut rng, &mut st.beta, emit) {
                 Flight::Absorbed => break,
                 Flight::Scattered(p) => {
                     if depth == max_depth {
                         break;
                     }
                     depth += 1;
-                    let phase = med.phase;
-                    let wo = -d;
-                    let eval = |wi: Vec3| {
-                        let v = phase.p(wo, wi);
-                        (Rgb::splat(v), v)
-                    };
-                    l += beta * direct(scene, p, None, medium, eval, 1.0, sampler, &mut rng, rays);
+                    let wo = -(ray.d / ray.d.length());
+                    l += st.beta * direct_in_medium(scene, p, wo, m, 1.0, sampler, &mut rng, rays);
+                    let phase = scene.media[m as usize].phase;
                     let Some(ps) = phase.sample(wo, sampler.get_2d()) else {
                         break;
                     };
-                    specular_bounce = false;
-                    pdf_prev = ps.pdf;
-                    p_prev = p;
+                    st.specular_bounce = false;
+                    st.pdf_prev = ps.pdf;
+                    st.p_prev = p;
                     ray = Ray::new(p, ps.wi);
-                    if !roulette(&mut beta, eta_scale, depth, sampler) {
+                    if !roulette(&mut st.beta, st.eta_scale, depth, sampler) {
                         break;
                     }
                     continue;
@@ -200,19 +215,12 @@ pub fn li(
                 Flight::Passed => {}
             }
         }
+        let count_fully = depth == 0 || st.specular_bounce;
         let Some(hit) = hit else {
-            l += beta * escaped_mis(scene, &ray, p_prev, pdf_prev, depth == 0 || specular_bounce);
+            l += st.beta * escaped_mis(scene, &ray, st.p_prev, st.pdf_prev, count_fully);
             break;
         };
-        l += beta
-            * emitted_mis(
-                scene,
-                &hit,
-                &ray,
-                p_prev,
-                pdf_prev,
-                depth == 0 || specular_bounce,
-            );
+        l += st.beta * emitted_mis(scene, &hit, &ray, st.p_prev, st.pdf_prev, count_fully);
         let mi = scene.medium_interface(&hit);
         if scene.is_boundary(&hit) {
             crossings += 1;
@@ -232,59 +240,85 @@ pub fn li(
         let wo = -ray.d;
         let bsdf = scene.bsdf(&hit, wo);
         if !bsdf.is_delta() {
-            let ns = hit.geom.ns;
-            let eval = |wi: Vec3| {
-                let f = bsdf.eval(wo, wi, TransportMode::Radiance) * wi.dot(ns).abs();
-                (f, bsdf.pdf(wo, wi, TransportMode::Radiance))
-            };
-            let at = Surface {
-                ng: hit.geom.ng,
-                interface: mi,
-            };
-            l += beta
-                * direct(
-                    scene,
-                    hit.geom.p,
-                    Some(at),
-                    medium,
-                    eval,
-                    1.0,
-                    sampler,
-                    &mut rng,
-                    rays,
-                );
+            l += st.beta
+                * direct_at_surface(scene, &hit, &bsdf, wo, medium, 1.0, sampler, &mut rng, rays);
         }
-        let uc = sampler.get_1d();
-        let u = sampler.get_2d();
-        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+        let Some(wi) = st.bounce(&hit, &bsdf, wo, sampler) else {
             break;
         };
-        if bs.pdf == 0.0 || bs.f.is_black() {
-            break;
-        }
-        beta *= bs.weight(hit.geom.ns);
-        specular_bounce = bs.delta;
-        pdf_prev = bs.pdf;
-        p_prev = hit.geom.p;
-        if bs.transmission {
-            eta_scale *= bs.eta * bs.eta;
-        }
         if let Some(mi) = mi {
-            medium = mi.towards(bs.wi, hit.geom.ng);
+            medium = mi.towards(wi, hit.geom.ng);
         }
-        ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
-        if !roulette(&mut beta, eta_scale, depth, sampler) {
+        ray = spawn_ray(hit.geom.p, hit.geom.ng, wi);
+        if !roulette(&mut st.beta, st.eta_scale, depth, sampler) {
             break;
         }
     }
     l
 }
 
+/// [`direct`] at a surface point in `medium` (the side the arriving ray
+/// came in), for its BSDF, weighted against `n_scatter` BSDF samples.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn direct_at_surface(
+    scene: &Scene,
+    hit: &Hit,
+    bsdf: &SurfaceBsdf,
+    wo: Vec3,
+    medium: Option<u32>,
+    n_scatter: f32,
+    sampler: &mut Sampler,
+    rng: &mut Pcg32,
+    rays: &mut super::RayCounts,
+) -> Rgb {
+    let ns = hit.geom.ns;
+    let eval = |wi: Vec3| {
+        let f = bsdf.eval(wo, wi, TransportMode::Radiance) * wi.dot(ns).abs();
+        (f, bsdf.pdf(wo, wi, TransportMode::Radiance))
+    };
+    let at = Surface {
+        ng: hit.geom.ng,
+        interface: scene.medium_interface(hit),
+    };
+    direct(
+        scene,
+        hit.geom.p,
+        Some(at),
+        medium,
+        eval,
+        n_scatter,
+        sampler,
+        rng,
+        rays,
+    )
+}
+
+/// [`direct`] at a scattering point `p` of medium `m`, for its phase
+/// function, weighted against `n_scatter` phase samples.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn direct_in_medium(
+    scene: &Scene,
+    p: Vec3,
+    wo: Vec3,
+    m: u32,
+    n_scatter: f32,
+    sampler: &mut Sampler,
+    rng: &mut Pcg32,
+    rays: &mut super::RayCounts,
+) -> Rgb {
+    let phase = scene.media[m as usize].phase;
+    let eval = |wi: Vec3| {
+        let v = phase.p(wo, wi);
+        (Rgb::splat(v), v)
+    };
+    direct(scene, p, None, Some(m), eval, n_scatter, sampler, rng, rays)
+}
+
 /// The surface a shadow ray leaves from.
 #[derive(Clone, Copy)]
-pub(crate) struct Surface {
-    pub ng: Vec3,
-    pub interface: Option<MediumInterface>,
+struct Surface {
+    ng: Vec3,
+    interface: Option<MediumInterface>,
 }
 
 /// Next-event estimation at `p` (on a surface, or in a medium when `at` is
@@ -294,7 +328,7 @@ pub(crate) struct Surface {
 /// scattering function (times the cosine on surfaces) and its sampling
 /// density. Consumes three sampler dimensions.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn direct(
+fn direct(
     scene: &Scene,
     p: Vec3,
     at: Option<Surface>,

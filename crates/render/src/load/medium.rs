@@ -83,7 +83,7 @@ fn build_medium(desc: &SceneDesc, m: &MediumDesc, w: &mut Warnings) -> Result<Me
     let kind = match e.ty.as_str() {
         "homogeneous" => MediumKind::Homogeneous(homogeneous(desc, e, w)?),
         "uniformgrid" => MediumKind::Grid(uniform_grid(desc, m, w)?),
-        "rgbgrid" => MediumKind::RgbGrid(rgb_grid(desc, m, w)?),
+        "rgbgrid" => MediumKind::RgbGrid(rgb_grid(m, w)?),
         "cloud" => MediumKind::Cloud(cloud(desc, m, w)?),
         "nanovdb" => {
             let scale = p.get_float("scale", 1.0)?;
@@ -372,8 +372,7 @@ fn cloud(desc: &SceneDesc, m: &MediumDesc, w: &mut Warnings) -> Result<Cloud, Di
     ))
 }
 
-fn rgb_grid(desc: &SceneDesc, m: &MediumDesc, w: &mut Warnings) -> Result<RgbGrid, Diagnostic> {
-    let _ = desc;
+fn rgb_grid(m: &MediumDesc, w: &mut Warnings) -> Result<RgbGrid, Diagnostic> {
     let e = &m.entity;
     let p = &e.params;
     let to_rgb = |v: Vec<Vec3>| {

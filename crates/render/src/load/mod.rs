@@ -140,6 +140,7 @@ pub fn build_scene(desc: &SceneDesc, overrides: &Overrides) -> Result<LoadedScen
             || (render_media && m.media.is_some())
     });
     if !render_media {
+        // Nothing changes the medium where media are left out.
         for m in materials.materials.iter_mut() {
             m.media = None;
         }

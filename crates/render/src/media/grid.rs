@@ -67,8 +67,4 @@ impl Grid {
             le,
         }
     }
-
-    pub fn is_emissive(&self) -> bool {
-        self.emission != GridEmission::None
-    }
 }

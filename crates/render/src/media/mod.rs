@@ -70,15 +70,6 @@ impl Medium {
         }
     }
 
-    pub fn is_emissive(&self) -> bool {
-        match &self.kind {
-            MediumKind::Homogeneous(m) => !m.le.is_black(),
-            MediumKind::Grid(m) => m.is_emissive(),
-            MediumKind::RgbGrid(m) => m.le.is_some(),
-            MediumKind::Cloud(_) => false,
-        }
-    }
-
     /// Calls `f(t0, t1, majorant)` over the ray `o + t d` (`d` of unit
     /// length, so `t` is a distance) within `[0, tmax)`, segment by segment
     /// in order, until `f` returns false; returns whether it got to the end.
@@ -92,18 +83,9 @@ impl Medium {
     ) -> bool {
         match &self.kind {
             MediumKind::Homogeneous(m) => f(0.0, tmax, m.majorant()),
-            MediumKind::Grid(m) => {
-                let u = &m.unit_from_world;
-                m.majorants.walk(u.point(o), u.vector(d), tmax, f)
-            }
-            MediumKind::RgbGrid(m) => {
-                let u = &m.unit_from_world;
-                m.majorants.walk(u.point(o), u.vector(d), tmax, f)
-            }
-            MediumKind::Cloud(m) => {
-                let u = &m.unit_from_world;
-                m.majorants.walk(u.point(o), u.vector(d), tmax, f)
-            }
+            MediumKind::Grid(m) => m.majorants.walk_ray(&m.unit_from_world, o, d, tmax, f),
+            MediumKind::RgbGrid(m) => m.majorants.walk_ray(&m.unit_from_world, o, d, tmax, f),
+            MediumKind::Cloud(m) => m.majorants.walk_ray(&m.unit_from_world, o, d, tmax, f),
         }
     }
 }

@@ -12,7 +12,7 @@
 use super::{Medium, MediumPoint};
 use lumis_math::{Pcg32, Rgb, Vec3};
 
-/// Calls `f(rng, t, p, coefficients, majorant)` at each tentative
+/// Calls `f(rng, p, coefficients, majorant)` at each tentative
 /// collision along `o + t d` (`d` unit) within `[0, tmax)`, in order, until
 /// `f` returns false. Returns whether the ray got through to `tmax`.
 pub fn collisions(
@@ -21,7 +21,7 @@ pub fn collisions(
     d: Vec3,
     tmax: f32,
     rng: &mut Pcg32,
-    mut f: impl FnMut(&mut Pcg32, f32, Vec3, MediumPoint, f32) -> bool,
+    mut f: impl FnMut(&mut Pcg32, Vec3, MediumPoint, f32) -> bool,
 ) -> bool {
     medium.majorants(o, d, tmax, |t0, t1, m| {
         if !(m > 0.0) {
@@ -35,7 +35,7 @@ pub fn collisions(
                 return true;
             }
             let p = o + d * t;
-            if !f(rng, t, p, medium.point(p), m) {
+            if !f(rng, p, medium.point(p), m) {
                 return false;
             }
         }
@@ -57,7 +57,7 @@ pub fn transmittance(medium: &Medium, o: Vec3, d: Vec3, tmax: f32, rng: &mut Pcg
         return st.map(|s| if s == 0.0 { 1.0 } else { (-s * tmax).exp() });
     }
     let mut tr = Rgb::WHITE;
-    collisions(medium, o, d, tmax, rng, |rng, _, _, mp, m| {
+    collisions(medium, o, d, tmax, rng, |rng, _, mp, m| {
         tr = tr * sigma_n(&mp, m) / m;
         let top = tr.max_component();
         if top < 0.05 {

@@ -110,6 +110,19 @@ impl Majorants {
         Majorants { res, values }
     }
 
+    /// [`Majorants::walk`] for a world-space ray, carried into the unit
+    /// cube by `unit_from_world` (distances along it are unchanged).
+    pub fn walk_ray(
+        &self,
+        unit_from_world: &lumis_math::Transform,
+        o: Vec3,
+        d: Vec3,
+        tmax: f32,
+        f: impl FnMut(f32, f32, f32) -> bool,
+    ) -> bool {
+        self.walk(unit_from_world.point(o), unit_from_world.vector(d), tmax, f)
+    }
+
     /// Calls `f(t0, t1, majorant)` for each cell the ray `o + t d` (unit-cube
     /// coordinates) crosses within `[0, tmax)`, in order, until `f` returns
     /// false. Returns whether the walk reached its end.

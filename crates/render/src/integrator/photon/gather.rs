@@ -31,7 +31,30 @@ pub struct PhotonCtx<'a> {
 }
 
 thread_local! {
-    static SCRATCH: RefCell<Vec<(u32, f32)>> = const { RefCell::new(Vec::new()) };
+    /// The photons a density estimate found (reused, one per thread).
+    pub(super) static SCRATCH: RefCell<Vec<(u32, f32)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The photons of `map` around `x` into `found`, and the squared radius:
+/// the iteration's (`r2_of` the radii, all photons within it), or, with
+/// one map, that of the `nearest` photons within `max_radius` (then
+/// `true`: the farthest found lies on the boundary).
+pub(super) fn query(
+    ctx: &PhotonCtx,
+    map: &super::map::PhotonMap,
+    x: Vec3,
+    r2_of: impl Fn(&super::Radii) -> f32,
+    max_radius: f32,
+    found: &mut Vec<(u32, f32)>,
+) -> (f32, bool) {
+    match &ctx.maps.radii {
+        Some(radii) => {
+            let r2 = r2_of(radii);
+            map.within(x, r2.sqrt(), found);
+            (r2, false)
+        }
+        None => (map.knn(x, ctx.s.nearest, max_radius, found), true),
+    }
 }
 
 const CONE_K: f32 = 1.1;
@@ -311,17 +334,9 @@ fn caustic_photons(
         found.clear();
         // Progressive iterations: every photon in a disc fixed beforehand
         // (its count varies); otherwise the `nearest` ones.
-        let (r2, skip_boundary) = match &ctx.maps.radii {
-            Some(radii) => {
-                let r2 = radii.caustic_r2(x.geom.p);
-                map.within(x.geom.p, r2.sqrt(), &mut found);
-                (r2, false)
-            }
-            None => (
-                map.knn(x.geom.p, s.nearest, ctx.maps.max_radius, &mut found),
-                true,
-            ),
-        };
+        let p = x.geom.p;
+        let max = ctx.maps.max_radius;
+        let (r2, skip_boundary) = query(ctx, map, p, |r| r.caustic_r2(p), max, &mut found);
         let delta_a = PI * r2;
         let alpha = alpha.effective(delta_a);
         if found.is_empty() || r2 <= 0.0 {
@@ -394,17 +409,11 @@ fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rg
     SCRATCH.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
-        let (r2, skip) = match fixed {
-            Some(radii) => {
-                let r2 = radii.global_r2(y.geom.p);
-                map.within(y.geom.p, r2.sqrt(), &mut found);
-                (r2, None)
-            }
-            None => {
-                let r2 = map.knn(y.geom.p, ctx.s.nearest, radius, &mut found);
-                (r2, boundary_photon(&found, ctx.s.nearest, r2))
-            }
-        };
+        let p = y.geom.p;
+        let (r2, knn) = query(ctx, map, p, |r| r.global_r2(p), radius, &mut found);
+        let skip = knn
+            .then(|| boundary_photon(&found, ctx.s.nearest, r2))
+            .flatten();
         if found.is_empty() || r2 <= 0.0 {
             return Rgb::BLACK;
         }

@@ -7,10 +7,10 @@ use super::photon::Photon;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
-use crate::integrator::volpath::{advance, Flight};
+use crate::integrator::volpath::{advance, flight_stream, Flight};
 use crate::media::LightMedium;
 use crate::scene::Scene;
-use lumis_math::{Pcg32, Rgb, Sampler, SamplerKind, Vec3};
+use lumis_math::{Rgb, Sampler, SamplerKind, Vec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -155,13 +155,7 @@ fn trace_one(
             }
         }
     };
-    let mut rng = scene.has_media().then(|| {
-        let bits = |s: &mut Sampler| s.get_1d().to_bits() as u64;
-        Pcg32::new(
-            lumis_math::rng::mix64((bits(sampler) << 32) | bits(sampler)),
-            0,
-        )
-    });
+    let mut rng = scene.has_media().then(|| flight_stream(sampler));
     'bounce: for depth in 0..=max_depth {
         *rays += 1;
         let mut hit = scene.intersect(&ray);

@@ -25,7 +25,7 @@
 //! sample `sigma_s` times the fluence; a channel without scattering has no
 //! photons and gets nothing.
 
-use super::gather::PhotonCtx;
+use super::gather::{query, PhotonCtx, SCRATCH};
 use super::weights::{q1, q2, w1, Alpha};
 use super::GLOBAL_RADIUS_SCALE;
 use crate::geometry::Ray;
@@ -35,17 +35,14 @@ use lumis_math::{Pcg32, Rgb, Sampler, Vec3, PI};
 use std::cell::RefCell;
 
 thread_local! {
-    /// The free flights' random stream of the camera sample being traced
-    /// (seeded from its dimensions, so images do not depend on threads).
+    /// The free flights' random stream of the camera sample being traced.
     static RNG: RefCell<Pcg32> = RefCell::new(Pcg32::new(0, 0));
-    static FOUND: RefCell<Vec<(u32, f32)>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Starts the flights' stream for a camera sample (two sampler dimensions).
 pub(super) fn seed(sampler: &mut Sampler) {
-    let bits = |s: &mut Sampler| s.get_1d().to_bits() as u64;
-    let seed = lumis_math::rng::mix64((bits(sampler) << 32) | bits(sampler));
-    RNG.with(|r| *r.borrow_mut() = Pcg32::new(seed, 0));
+    let stream = volpath::flight_stream(sampler);
+    RNG.with(|r| *r.borrow_mut() = stream);
 }
 
 pub(super) fn with_rng<R>(f: impl FnOnce(&mut Pcg32) -> R) -> R {
@@ -81,30 +78,8 @@ pub(super) fn direct_at_surface(
     sampler: &mut Sampler,
     rays: &mut crate::integrator::RayCounts,
 ) -> Rgb {
-    use crate::bsdf::TransportMode;
-    let ns = x.geom.ns;
-    let eval = |wi: Vec3| {
-        let f = bsdf.eval(wo, wi, TransportMode::Radiance) * wi.dot(ns).abs();
-        (f, bsdf.pdf(wo, wi, TransportMode::Radiance))
-    };
-    let at = volpath::Surface {
-        ng: x.geom.ng,
-        interface: ctx.scene.medium_interface(x),
-    };
-    let scene = ctx.scene;
-    with_rng(|rng| {
-        volpath::direct(
-            scene,
-            x.geom.p,
-            Some(at),
-            medium,
-            eval,
-            m2 as f32,
-            sampler,
-            rng,
-            rays,
-        )
-    })
+    let (scene, n) = (ctx.scene, m2 as f32);
+    with_rng(|rng| volpath::direct_at_surface(scene, x, bsdf, wo, medium, n, sampler, rng, rays))
 }
 
 /// Light scattered towards `wo` at `x` in medium `m` (a camera path's
@@ -121,16 +96,9 @@ pub(super) fn shade_medium(
     sampler: &mut Sampler,
     rays: &mut crate::integrator::RayCounts,
 ) -> Rgb {
-    let scene = ctx.scene;
-    let med = &scene.media[m as usize];
-    let phase = med.phase;
-    let eval = |wi: Vec3| {
-        let v = phase.p(wo, wi);
-        (Rgb::splat(v), v)
-    };
-    let mut l = with_rng(|rng| {
-        volpath::direct(scene, x, None, Some(m), eval, m2 as f32, sampler, rng, rays)
-    });
+    let (scene, n) = (ctx.scene, m2 as f32);
+    let phase = scene.media[m as usize].phase;
+    let mut l = with_rng(|rng| volpath::direct_in_medium(scene, x, wo, m, n, sampler, rng, rays));
     let (lc, sigma_s, delta_v, alpha) = caustic_volume_photons(ctx, x, wo, m, alpha, m2);
     l += lc;
     if m2 == 0 {
@@ -157,25 +125,9 @@ pub(super) fn shade_medium(
     l + gathered / m2 as f32
 }
 
-/// The photons of `map` around `x` into `found`, and the squared radius:
-/// the iteration's (`r2_of` the radii) or, with one map, that of the
-/// `nearest` photons within `max_radius`.
-fn query(
-    ctx: &PhotonCtx,
-    map: &super::map::PhotonMap,
-    x: Vec3,
-    r2_of: impl Fn(&super::Radii) -> f32,
-    max_radius: f32,
-    found: &mut Vec<(u32, f32)>,
-) -> f32 {
-    match &ctx.maps.radii {
-        Some(radii) => {
-            let r2 = r2_of(radii);
-            map.within(x, r2.sqrt(), found);
-            r2
-        }
-        None => map.knn(x, ctx.s.nearest, max_radius, found),
-    }
+/// The volume of a query sphere of squared radius `r2`.
+fn sphere_volume(r2: f32) -> f32 {
+    4.0 / 3.0 * PI * r2 * r2.sqrt()
 }
 
 /// `sigma_s(x)`'s mean over the channels, and `1 / sigma_s` per channel (0
@@ -200,10 +152,10 @@ fn caustic_volume_photons(
     let s = ctx.s;
     let phase = ctx.scene.media[m as usize].phase;
     let (sigma_s, inv_sigma_s) = scattering(ctx, m, x);
-    FOUND.with(|cell| {
+    SCRATCH.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
-        let r2 = query(
+        let (r2, _) = query(
             ctx,
             map,
             x,
@@ -211,7 +163,7 @@ fn caustic_volume_photons(
             ctx.maps.max_radius,
             &mut found,
         );
-        let delta_v = 4.0 / 3.0 * PI * r2 * r2.sqrt();
+        let delta_v = sphere_volume(r2);
         let alpha = alpha.effective(0.0);
         if found.is_empty() || !(r2 > 0.0) {
             return (Rgb::BLACK, sigma_s, delta_v, alpha);
@@ -246,11 +198,11 @@ fn caustic_volume_photons(
 pub(super) fn global_in_scattering(ctx: &PhotonCtx, x: Vec3, wo: Vec3, m: u32) -> Rgb {
     let map = &ctx.maps.volume_global;
     let phase = ctx.scene.media[m as usize].phase;
-    FOUND.with(|cell| {
+    SCRATCH.with(|cell| {
         let mut found = cell.borrow_mut();
         found.clear();
         let max = ctx.maps.max_radius * GLOBAL_RADIUS_SCALE;
-        let r2 = query(ctx, map, x, |r| r.global_r2(x), max, &mut found);
+        let (r2, _) = query(ctx, map, x, |r| r.global_r2(x), max, &mut found);
         if found.is_empty() || !(r2 > 0.0) {
             return Rgb::BLACK;
         }
@@ -259,7 +211,6 @@ pub(super) fn global_in_scattering(ctx: &PhotonCtx, x: Vec3, wo: Vec3, m: u32) -
             let ph = map.photon(i);
             sum += ph.power() * phase.p(wo, ph.dir());
         }
-        let delta_v = 4.0 / 3.0 * PI * r2 * r2.sqrt();
-        sum * scattering(ctx, m, x).1 / delta_v
+        sum * scattering(ctx, m, x).1 / sphere_volume(r2)
     })
 }

@@ -54,32 +54,24 @@ impl Surfaces<'_, '_> {
         if let Some(mi) = self.media.interface(&s.media)? {
             material = self.mats.with_media(material, mi);
         }
+        let loc = || {
+            let p = &s.entity.params;
+            p.loc_of("alpha").unwrap_or_else(|| s.entity.loc.clone())
+        };
         match self.tex.float(&s.entity.params, "alpha", 1.0)? {
             TexFloat::Const(a) if a >= 1.0 => {}
             TexFloat::Const(a) if !(a >= 0.0) => {
-                let loc = s
-                    .entity
-                    .params
-                    .loc_of("alpha")
-                    .unwrap_or_else(|| s.entity.loc.clone());
                 return Err(Diagnostic::error(
-                    &loc,
+                    &loc(),
                     format!("`alpha` must be in [0, 1] (above 1 counts as 1), found {a}"),
                 ));
             }
             // Light sampling picks points on an emitter whatever its alpha:
             // cutting rays through it would make the two disagree.
-            _ if s.area_light.is_some() => {
-                let loc = s
-                    .entity
-                    .params
-                    .loc_of("alpha")
-                    .unwrap_or_else(|| s.entity.loc.clone());
-                w.push(Diagnostic::warning(
-                    &loc,
-                    "`alpha` on an emitting shape is ignored (the whole shape emits and is solid)",
-                ));
-            }
+            _ if s.area_light.is_some() => w.push(Diagnostic::warning(
+                &loc(),
+                "`alpha` on an emitting shape is ignored (the whole shape emits and is solid)",
+            )),
             alpha => material = self.mats.with_alpha(material, alpha),
         }
         Ok(material)
