@@ -1,5 +1,5 @@
-//! Checkpoints: a render's job and accumulated state (per-pixel Welford
-//! statistics, splats, sample counts, the integrator's own state as opaque
+//! Checkpoints: a render's job and accumulated state (per-pixel fixed-point
+//! sums, splats, sample counts, the integrator's own state as opaque
 //! bytes, dropped-sample counts) in a small binary file, written atomically,
 //! so a render can be continued exactly where it stopped. Photon maps are
 //! not stored: they are rebuilt from the seed, which reproduces them bit for
@@ -17,9 +17,11 @@ use std::time::Duration;
 
 const MAGIC: &[u8; 8] = b"LUMISCKP";
 /// Bumped whenever the layout changes.
-pub const FORMAT_VERSION: u32 = 2;
-/// Bytes per saved pixel: n, mean[3], m2[3].
-const PIXEL_BYTES: usize = 56;
+pub const FORMAT_VERSION: u32 = 3;
+/// Bytes per saved pixel: n, then the fixed-point sums and sums of squares.
+const PIXEL_BYTES: usize = 8 + 6 * 16;
+/// Bytes per pixel of splat sums.
+const SPLAT_BYTES: usize = 3 * 16;
 
 #[derive(Clone, Debug)]
 pub struct Checkpoint {
@@ -115,13 +117,13 @@ impl Checkpoint {
         o.push(!f.splats.is_empty() as u8);
         for p in &f.pixels {
             o.extend_from_slice(&p.n.to_le_bytes());
-            for v in p.mean.iter().chain(&p.m2) {
-                o.extend_from_slice(&v.to_bits().to_le_bytes());
+            for v in p.sum.iter().chain(&p.squares) {
+                o.extend_from_slice(&v.to_le_bytes());
             }
         }
         for s in &f.splats {
             for v in s {
-                o.extend_from_slice(&v.to_bits().to_le_bytes());
+                o.extend_from_slice(&v.to_le_bytes());
             }
         }
         let h = Fnv::default().write(&o).0;
@@ -191,32 +193,28 @@ impl Checkpoint {
         }
         let splat_samples = r.u32()?;
         let has_splats = r.take(1)?[0] != 0;
-        let per_pixel = PIXEL_BYTES as u64 + if has_splats { 24 } else { 0 };
+        let per_pixel = (PIXEL_BYTES + if has_splats { SPLAT_BYTES } else { 0 }) as u64;
         if bounds.area().checked_mul(per_pixel) != Some(r.left() as u64) {
             return Err(damaged("pixel data does not match the film size"));
         }
         let mut pixels = Vec::with_capacity(bounds.area() as usize);
         for _ in 0..bounds.area() {
             let n = r.u64()?;
-            let mut v = [0.0f64; 6];
+            let mut v = [0i128; 6];
             for x in &mut v {
-                *x = f64::from_bits(r.u64()?);
+                *x = r.i128()?;
             }
             pixels.push(Pixel {
                 n,
-                mean: [v[0], v[1], v[2]],
-                m2: [v[3], v[4], v[5]],
+                sum: [v[0], v[1], v[2]],
+                squares: [v[3], v[4], v[5]],
             });
         }
         let mut splats = Vec::new();
         if has_splats {
             splats.reserve(bounds.area() as usize);
             for _ in 0..bounds.area() {
-                splats.push([
-                    f64::from_bits(r.u64()?),
-                    f64::from_bits(r.u64()?),
-                    f64::from_bits(r.u64()?),
-                ]);
+                splats.push([r.i128()?, r.i128()?, r.i128()?]);
             }
         }
         Ok(Checkpoint {
@@ -303,6 +301,9 @@ impl Reader<'_> {
     fn u64(&mut self) -> Result<u64, CheckpointError> {
         Ok(u64::from_le_bytes(self.take(8)?.try_into().unwrap()))
     }
+    fn i128(&mut self) -> Result<i128, CheckpointError> {
+        Ok(i128::from_le_bytes(self.take(16)?.try_into().unwrap()))
+    }
     fn string(&mut self) -> Result<String, CheckpointError> {
         let n = self.u32()? as usize;
         let b = self.take(n)?;
@@ -360,27 +361,8 @@ mod tests {
         assert_eq!(d.state.integrator, c.state.integrator);
         assert_eq!(d.state.first_bad, c.state.first_bad);
         assert_eq!(d.state.film.splat_samples, 2);
-        assert_eq!(
-            d.state
-                .film
-                .splats
-                .concat()
-                .iter()
-                .map(|v| v.to_bits())
-                .collect::<Vec<_>>(),
-            c.state
-                .film
-                .splats
-                .concat()
-                .iter()
-                .map(|v| v.to_bits())
-                .collect::<Vec<_>>()
-        );
-        for (a, b) in d.state.film.pixels.iter().zip(&c.state.film.pixels) {
-            assert_eq!(a.n, b.n);
-            assert_eq!(a.mean.map(f64::to_bits), b.mean.map(f64::to_bits));
-            assert_eq!(a.m2.map(f64::to_bits), b.m2.map(f64::to_bits));
-        }
+        assert_eq!(d.state.film.splats, c.state.film.splats);
+        assert_eq!(d.state.film.pixels, c.state.film.pixels);
     }
 
     #[test]

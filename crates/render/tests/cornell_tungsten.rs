@@ -162,7 +162,7 @@ fn matches_tungsten(
                 for x in bx * BLOCK as usize..(bx + 1) * BLOCK as usize {
                     let i = y * rx as usize + x;
                     let p = &out.film.pixels[i];
-                    a += (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0;
+                    a += p.mean().iter().sum::<f64>() / 3.0;
                     b += (refd[i][0] + refd[i][1] + refd[i][2]) / 3.0;
                     let v = p.variance_of_mean();
                     var += (v.r + v.g + v.b) as f64 / 9.0;

@@ -101,7 +101,7 @@ fn default_scene_matches_reference() {
                     for x in bx * BLOCK..(bx + 1) * BLOCK {
                         let i = (y * RES + x) as usize;
                         let p = &out.film.pixels[i];
-                        d += p.mean[c] - mean.data[3 * i + c] as f64;
+                        d += p.mean()[c] - mean.data[3 * i + c] as f64;
                         m += mean.data[3 * i + c] as f64;
                         v += var.data[3 * i + c] as f64 * (1.0 + scale);
                     }

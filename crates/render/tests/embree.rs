@@ -145,7 +145,7 @@ fn same_image_as_the_builtin_bvh() {
         .iter()
         .zip(&b.film.pixels)
         .filter(|(p, q)| {
-            (0..3).all(|c| (p.mean[c] - q.mean[c]).abs() <= 1e-3 * (1.0 + p.mean[c].abs()))
+            (0..3).all(|c| (p.mean()[c] - q.mean()[c]).abs() <= 1e-3 * (1.0 + p.mean()[c].abs()))
         })
         .count();
     eprintln!("{close} of {} pixels within 1e-3", a.film.pixels.len());

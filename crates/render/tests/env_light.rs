@@ -194,9 +194,7 @@ fn diffuse_plane_under_a_map_matches_its_irradiance() {
             .film
             .pixels
             .iter()
-            .map(|p| {
-                Rgb::new(p.mean[0] as f32, p.mean[1] as f32, p.mean[2] as f32).luminance() as f64
-            })
+            .map(|p| p.mean_rgb().luminance() as f64)
             .collect();
         let (m, se) = sample_mean_and_se(&vals);
         let z = (m - expected) / (se.powi(2) + (0.002 * expected).powi(2)).sqrt();

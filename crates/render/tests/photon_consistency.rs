@@ -167,7 +167,7 @@ fn mse_against_reference(name: &str, film: &Film) -> f64 {
     let mut sq = 0.0f64;
     for (i, p) in film.pixels.iter().enumerate() {
         for c in 0..3 {
-            sq += (p.mean[c] - m.data[3 * i + c] as f64).powi(2) - v.data[3 * i + c] as f64;
+            sq += (p.mean()[c] - m.data[3 * i + c] as f64).powi(2) - v.data[3 * i + c] as f64;
         }
     }
     sq / m.data.len() as f64

@@ -88,8 +88,8 @@ fn errors(name: &str, film: &Film) -> (f64, f64) {
     for (i, p) in film.pixels.iter().enumerate() {
         for c in 0..3 {
             let r = m.data[3 * i + c] as f64;
-            sq += (p.mean[c] - r).powi(2) - v.data[3 * i + c] as f64;
-            sum += p.mean[c];
+            sq += (p.mean()[c] - r).powi(2) - v.data[3 * i + c] as f64;
+            sum += p.mean()[c];
             sum_ref += r;
         }
     }

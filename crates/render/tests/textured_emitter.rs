@@ -144,7 +144,7 @@ fn halves(l: &LoadedScene, film: &Film, plane: f32, expected: impl Fn(usize, f64
         let (mut diff, mut var, mut sum_exp) = (0.0, 0.0, 0.0);
         for (i, &ei) in e.iter().enumerate().filter(|(i, _)| in_half(*i, half)) {
             let pixel = &film.pixels[i / 3];
-            diff += pixel.mean[i % 3] - ei;
+            diff += pixel.mean()[i % 3] - ei;
             var += pixel.variance_of_mean()[i % 3] as f64;
             sum_exp += ei;
         }

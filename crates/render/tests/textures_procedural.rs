@@ -74,7 +74,7 @@ fn every_procedural_texture_loads_and_renders() {
             .film
             .pixels
             .iter()
-            .map(|p| (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0)
+            .map(|p| (p.mean()[0] + p.mean()[1] + p.mean()[2]) / 3.0)
             .collect();
         let spread = vals.iter().cloned().fold(f64::MIN, f64::max)
             - vals.iter().cloned().fold(f64::MAX, f64::min);

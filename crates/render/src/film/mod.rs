@@ -1,8 +1,11 @@
-//! Film: per-pixel running mean and variance (Welford), pixel bounds, the
+//! Film: per-pixel sums of samples and of their squares in fixed point
+//! (exact and associative, so renders split into parts merge to the same
+//! bits), pixel bounds, the
 //! film size limit, and pixel filters applied by importance sampling so
 //! each sample touches only its own pixel (which keeps images independent
 //! of thread count).
 
+pub mod exact;
 mod filter;
 pub use filter::Filter;
 
@@ -33,33 +36,47 @@ impl PixelBounds {
     }
 }
 
-/// Running statistics of one pixel.
-#[derive(Clone, Copy, Debug, Default)]
+/// Running sums of one pixel's samples, in fixed point (see [`exact`]):
+/// integer sums are associative, so passes rendered anywhere, in any
+/// split, add up to the same bits (partial renders and their merge).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Pixel {
     pub n: u64,
-    pub mean: [f64; 3],
-    pub m2: [f64; 3],
+    /// Sum of the samples, units of 2^-[`exact::SUM_BITS`].
+    pub sum: [i128; 3],
+    /// Sum of their squares, units of 2^-[`exact::SQUARE_BITS`].
+    pub squares: [i128; 3],
 }
 
 impl Pixel {
     #[inline]
     pub fn add(&mut self, c: Rgb) {
         self.n += 1;
-        let inv = 1.0 / self.n as f64;
         for (i, v) in [c.r, c.g, c.b].into_iter().enumerate() {
             let v = v as f64;
-            let d = v - self.mean[i];
-            self.mean[i] += d * inv;
-            self.m2[i] += d * (v - self.mean[i]);
+            self.sum[i] = self.sum[i].wrapping_add(exact::sum_units(v));
+            self.squares[i] = self.squares[i].wrapping_add(exact::square_units(v * v));
         }
     }
 
+    /// Adds another pixel's sums (a partial render of other passes).
+    pub fn merge(&mut self, o: &Pixel) {
+        self.n += o.n;
+        for i in 0..3 {
+            self.sum[i] = self.sum[i].wrapping_add(o.sum[i]);
+            self.squares[i] = self.squares[i].wrapping_add(o.squares[i]);
+        }
+    }
+
+    /// The sample mean per channel (0 without samples).
+    pub fn mean(&self) -> [f64; 3] {
+        let n = self.n.max(1) as f64;
+        self.sum.map(|s| exact::sum_value(s) / n)
+    }
+
     pub fn mean_rgb(&self) -> Rgb {
-        Rgb::new(
-            self.mean[0] as f32,
-            self.mean[1] as f32,
-            self.mean[2] as f32,
-        )
+        let m = self.mean();
+        Rgb::new(m[0] as f32, m[1] as f32, m[2] as f32)
     }
 
     /// Variance of the pixel mean (sample variance / n).
@@ -67,12 +84,13 @@ impl Pixel {
         if self.n < 2 {
             return Rgb::BLACK;
         }
-        let d = (self.n - 1) as f64 * self.n as f64;
-        Rgb::new(
-            (self.m2[0] / d) as f32,
-            (self.m2[1] / d) as f32,
-            (self.m2[2] / d) as f32,
-        )
+        let n = self.n as f64;
+        let v = |i: usize| {
+            let s = exact::sum_value(self.sum[i]);
+            let q = exact::square_value(self.squares[i]);
+            ((q - s * s / n) / ((n - 1.0) * n)).max(0.0) as f32
+        };
+        Rgb::new(v(0), v(1), v(2))
     }
 }
 
@@ -83,9 +101,10 @@ pub struct Film {
     pub pixels: Vec<Pixel>,
     /// Sums of contributions splatted to pixels other than their sample's
     /// (light tracing, bidirectional connections), one RGB per pixel; empty
-    /// until the first splat. They enter the image divided by
-    /// `splat_samples`, the samples per pixel taken (pbrt-v4's rule).
-    pub splats: Vec<[f64; 3]>,
+    /// until the first splat, in fixed point like the pixels' sums. They
+    /// enter the image divided by `splat_samples`, the samples per pixel
+    /// taken (pbrt-v4's rule).
+    pub splats: Vec<[i128; 3]>,
     pub splat_samples: u32,
 }
 
@@ -119,12 +138,41 @@ impl Film {
             return;
         }
         if self.splats.is_empty() {
-            self.splats = vec![[0.0; 3]; self.pixels.len()];
+            self.splats = vec![[0; 3]; self.pixels.len()];
         }
         let s = &mut self.splats[((y - b.y0) * b.width() + (x - b.x0)) as usize];
         for (a, v) in s.iter_mut().zip([c.r, c.g, c.b]) {
-            *a += v as f64;
+            *a = a.wrapping_add(exact::sum_units(v as f64));
         }
+    }
+
+    /// Adds the sums of `o`, a render of other passes of the same film
+    /// (same resolution and bounds): the result does not depend on the
+    /// order or grouping of the merges.
+    pub fn merge(&mut self, o: &Film) -> Result<(), String> {
+        if (self.full_resolution, self.bounds) != (o.full_resolution, o.bounds)
+            || self.pixels.len() != o.pixels.len()
+        {
+            return Err(format!(
+                "films differ: {:?} {:?} against {:?} {:?}",
+                self.full_resolution, self.bounds, o.full_resolution, o.bounds
+            ));
+        }
+        for (p, q) in self.pixels.iter_mut().zip(&o.pixels) {
+            p.merge(q);
+        }
+        if !o.splats.is_empty() {
+            if self.splats.is_empty() {
+                self.splats = vec![[0; 3]; self.pixels.len()];
+            }
+            for (a, b) in self.splats.iter_mut().zip(&o.splats) {
+                for (x, y) in a.iter_mut().zip(b) {
+                    *x = x.wrapping_add(*y);
+                }
+            }
+        }
+        self.splat_samples += o.splat_samples;
+        Ok(())
     }
 
     pub fn width(&self) -> u32 {
@@ -146,7 +194,7 @@ impl Film {
             let inv = 1.0 / self.splat_samples.max(1) as f64;
             for (px, s) in img.chunks_exact_mut(3).zip(&self.splats) {
                 for (v, a) in px.iter_mut().zip(s) {
-                    *v = (*v as f64 + a * inv) as f32;
+                    *v = (*v as f64 + exact::sum_value(*a) * inv) as f32;
                 }
             }
         }
@@ -167,7 +215,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn welford_matches_two_pass() {
+    fn sums_match_two_pass_statistics() {
         let vals = [1.0f32, 2.0, 4.0, 8.0, 3.0];
         let mut p = Pixel::default();
         for v in vals {
@@ -177,5 +225,43 @@ mod tests {
         let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / 4.0;
         assert!((p.mean_rgb().r - mean).abs() < 1e-6);
         assert!((p.variance_of_mean().g - var / 5.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn films_of_parts_merge_to_the_bits_of_one() {
+        let b = PixelBounds {
+            x0: 0,
+            x1: 3,
+            y0: 0,
+            y1: 2,
+        };
+        let sample = |i: usize, s: usize| {
+            let t = (i * 31 + s * 7) as f32;
+            Rgb::new((t * 0.37).sin().abs() * 1e3, 1e-7 * t, (t * 0.1).cos())
+        };
+        let render = |passes: std::ops::Range<usize>| {
+            let mut f = Film::new((3, 2), b);
+            for s in passes.clone() {
+                for (i, p) in f.pixels.iter_mut().enumerate() {
+                    p.add(sample(i, s));
+                }
+                f.add_splat((s % 3) as u32, 1, sample(9, s));
+            }
+            f.splat_samples = passes.len() as u32;
+            f
+        };
+        let whole = render(0..40);
+        for cuts in [vec![0, 1, 40], vec![0, 13, 14, 40], vec![0, 39, 40]] {
+            // Parts merged in reverse order, to show the order does not matter.
+            let mut merged = Film::new((3, 2), b);
+            for w in cuts.windows(2).rev() {
+                merged.merge(&render(w[0]..w[1])).unwrap();
+            }
+            assert_eq!(merged.pixels, whole.pixels, "{cuts:?}");
+            assert_eq!(merged.splats, whole.splats);
+            assert_eq!(merged.mean_image(), whole.mean_image());
+        }
+        let other = Film::new((4, 2), b);
+        assert!(Film::new((3, 2), b).merge(&other).is_err());
     }
 }

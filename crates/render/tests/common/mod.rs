@@ -109,8 +109,8 @@ pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
         .pixels
         .iter()
         .map(|p| match channel {
-            Some(c) => p.mean[c],
-            None => (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0,
+            Some(c) => p.mean()[c],
+            None => p.mean().iter().sum::<f64>() / 3.0,
         })
         .collect();
     sample_mean_and_se(&vals)
@@ -125,11 +125,8 @@ pub fn region_mean_and_var(film: &Film, channel: Option<usize>) -> (f64, f64) {
     for p in &film.pixels {
         let v = p.variance_of_mean();
         let (m, v) = match channel {
-            Some(c) => (p.mean[c], v[c] as f64),
-            None => (
-                (p.mean[0] + p.mean[1] + p.mean[2]) / 3.0,
-                v.average() as f64,
-            ),
+            Some(c) => (p.mean()[c], v[c] as f64),
+            None => (p.mean().iter().sum::<f64>() / 3.0, v.average() as f64),
         };
         sum += m;
         var += v;
@@ -193,11 +190,7 @@ pub fn render_until(
 
 /// Whether two films hold the same per-pixel statistics, bit for bit.
 pub fn same_bits(a: &Film, b: &Film) -> bool {
-    a.pixels.iter().zip(&b.pixels).all(|(p, q)| {
-        p.n == q.n
-            && p.mean.map(f64::to_bits) == q.mean.map(f64::to_bits)
-            && p.m2.map(f64::to_bits) == q.m2.map(f64::to_bits)
-    })
+    a.pixels == b.pixels && a.splats == b.splats
 }
 
 /// `scenes/test/<name>.pbrt`.
