@@ -49,7 +49,10 @@ impl Job {
     #[pyo3(signature = (**params))]
     fn set(&mut self, params: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
         if let Some(p) = params {
-            self.update(p)?;
+            // All or nothing.
+            let mut j = self.clone();
+            j.update(p)?;
+            *self = j;
         }
         Ok(())
     }
@@ -150,8 +153,11 @@ impl Job {
     }
     #[setter]
     fn set_spp(&mut self, v: Option<u32>) -> PyResult<()> {
-        self.job.budget.spp = v;
-        self.check()
+        let mut j = self.clone();
+        j.job.budget.spp = v;
+        j.check()?;
+        *self = j;
+        Ok(())
     }
 
     /// Wall-clock budget in seconds (None: no time limit).
@@ -161,8 +167,11 @@ impl Job {
     }
     #[setter]
     fn set_time(&mut self, v: Option<f64>) -> PyResult<()> {
-        self.job.budget.time = v;
-        self.check()
+        let mut j = self.clone();
+        j.job.budget.time = v;
+        j.check()?;
+        *self = j;
+        Ok(())
     }
 
     /// Worker threads (0: all cores); the image does not depend on it.

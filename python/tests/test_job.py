@@ -64,3 +64,15 @@ def test_a_job_renders_as_its_parameters_do(tmp_path, monkeypatch):
     # Keywords given with a job override it.
     d = lumis.render(job, seed=6, output=[], progress=False)
     assert d.metadata["lumis:seed"] == "6" and not np.array_equal(d, a)
+
+
+def test_a_refused_setting_leaves_the_job_as_it_was():
+    j = lumis.Job(spp=4, photons=10)
+    before = j.to_json()
+    with pytest.raises(ValueError):
+        j.set(photons=20, spp=0)
+    with pytest.raises(ValueError):
+        j.spp = 0
+    with pytest.raises(ValueError):
+        j.time = -1.0
+    assert j.to_json() == before

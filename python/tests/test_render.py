@@ -68,6 +68,16 @@ def test_a_loaded_scene_renders_again_and_as_a_fresh_load(scenes):
     assert lumis.render(scene, seed=2, progress=False).stats["spp"] == 2
 
 
+def test_a_loaded_photon_scene_renders_again_as_a_fresh_load():
+    scene = lumis.load(resolution=(24, 20), spp=2, photons=5000, caustic_photons=5000)
+    a = lumis.render(scene, seed=4, progress=False)
+    b = lumis.render(scene, seed=4, progress=False)
+    fresh = lumis.render(resolution=(24, 20), spp=2, photons=5000, caustic_photons=5000,
+                         seed=4, progress=False)
+    assert np.array_equal(a, b) and np.array_equal(a, fresh)
+    assert a.stats["photons"]["iteration_photons"] == 5000
+
+
 def test_a_time_budget_stops_the_render(scenes):
     img = lumis.render(scenes / "test" / "caustic_sphere.pbrt", integrator="path",
                        resolution=(16, 16), time=0.3, progress=False)
