@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # The Python package's tests: a virtual environment under target/ with
-# pinned maturin, numpy and pytest; the `lumis` wheel built with the `test`
-# profile into the workspace's target/ (so it reuses what `cargo test
-# --workspace` compiled: the library at opt-level 3), installed there; the
-# CLI built the same way for the tests that compare with it; then pytest.
+# pinned maturin, numpy and pytest; the CLI and the `lumis` wheel built
+# with the `test` profile's settings (opt-level 3) in the workspace's
+# target/, the wheel installed in the environment; then pytest.
 #
 #   bash scripts/python-tests.sh [pytest arguments...]
 set -euo pipefail
@@ -26,11 +25,13 @@ if [ ! -f "$stamp" ]; then
     touch "$stamp"
 fi
 
-# The CLI and the wheel as `cargo test` builds: the `test` profile, which
-# is `dev` with opt-level 3 (Cargo.toml). The wheel cannot be built with
-# `--profile test` itself (that builds the test harness), so it is built
-# with `dev` at opt-level 3: the same settings, hence the same compiled
-# dependencies in the same folder (target/debug), only this crate to build.
+# The CLI and the wheel share one compile of the library: the wheel cannot
+# be built with `--profile test` (that builds a test harness), so it is
+# built with `dev` at opt-level 3, which are the `test` profile's settings
+# (Cargo.toml), hence the same compiled dependencies in the same folder
+# (target/debug). (What `cargo test --workspace` compiled is not reused:
+# the test build unifies features that dev-dependencies enable, such as
+# serde's `alloc`, into the library's dependencies, so its artifacts differ.)
 cargo build --profile test -p lumis
 rm -rf target/wheels/python-tests
 CARGO_PROFILE_DEV_OPT_LEVEL=3 "$venv/bin/maturin" build --profile dev --strip \

@@ -11,6 +11,16 @@ import pytest
 import lumis
 
 
+@pytest.fixture(autouse=True)
+def sigint_raises_keyboard_interrupt():
+    """Python's own SIGINT handler, whatever this process inherited: a
+    process started with SIGINT ignored (a background job of a
+    non-interactive shell) would otherwise never see the interrupt."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
 def interrupt_after(seconds):
     t = threading.Timer(seconds, lambda: os.kill(os.getpid(), signal.SIGINT))
     t.start()
@@ -19,12 +29,13 @@ def interrupt_after(seconds):
 
 def test_ctrl_c_stops_the_render_and_keeps_the_image_so_far():
     # Passes of 1 spp at 48x48 take milliseconds; the budget would take minutes.
+    # A time budget too, so a lost signal fails the test rather than hanging it.
+    scene = lumis.load(integrator="path", resolution=(48, 48), spp=1_000_000)
     timer = interrupt_after(1.0)
     start = time.monotonic()
     try:
         with pytest.raises(KeyboardInterrupt) as info:
-            lumis.render(integrator="path", resolution=(48, 48), spp=1_000_000,
-                         threads=1, progress=False)
+            lumis.render(scene, time=30, threads=1, progress=False)
     finally:
         timer.cancel()
     elapsed = time.monotonic() - start
@@ -46,7 +57,7 @@ def test_the_partial_image_is_the_render_at_that_sample_count():
     timer = interrupt_after(0.5)
     try:
         with pytest.raises(lumis.Interrupted) as info:
-            lumis.render(scene, time=600, threads=1, progress=False)
+            lumis.render(scene, time=30, threads=1, progress=False)
     finally:
         timer.cancel()
     partial = info.value.image

@@ -2,6 +2,7 @@
 outputs, parameters and the GIL."""
 
 import os
+import re
 import threading
 
 import numpy as np
@@ -111,13 +112,27 @@ def test_scene_file_names_of_parameters_are_accepted():
     assert a == b
 
 
-def test_the_parameters_are_the_clis_flags(cli):
+# The render flags that are keywords of the job rather than integrator
+# parameters, and those that only make sense on a command line.
+JOB_KEYWORDS = {"spp", "time", "threads", "seed", "integrator", "maxdepth", "resolution",
+                "crop", "exposure", "sampler", "clamp", "accel", "output"}
+CLI_ONLY = {"help", "quiet", "verbose", "stats", "checkpoint", "checkpoint_every",
+            "resume", "display_server"}
+
+
+def test_the_keywords_are_the_clis_flags(cli):
     help_text = run_cli(cli, "render", "--help").stdout
     params = lumis.parameters()
     assert "caustic_photons" in params and "strategy" in params
     for keyword, p in params.items():
         assert p["flag"] + " " in help_text, p["flag"]
         assert keyword == p["flag"][2:].replace("-", "_")
+    # And every flag is a keyword: a new parameter table reaches both.
+    listed = re.findall(r"^\s+(?:-\w, )?--([a-z][a-z-]*)", help_text, re.M)
+    flags = {f.replace("-", "_") for f in listed}
+    assert flags - CLI_ONLY == JOB_KEYWORDS | set(params)
+    for k in JOB_KEYWORDS:
+        lumis.Job(**{k: None})  # known (None: not given)
 
 
 def test_the_gil_is_released_while_rendering():
