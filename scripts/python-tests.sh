@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The Python package's tests: a virtual environment under target/ with
 # pinned maturin, numpy and pytest; the CLI and the `lumis` wheel built
-# with the `test` profile's settings (opt-level 3) in the workspace's
-# target/, the wheel installed in the environment; then pytest.
+# from the library as `cargo test --workspace` compiles it (after that,
+# only PyO3 and the native module are compiled), the wheel installed in
+# the environment; then pytest.
 #
 #   bash scripts/python-tests.sh [pytest arguments...]
 set -euo pipefail
@@ -25,18 +26,29 @@ if [ ! -f "$stamp" ]; then
     touch "$stamp"
 fi
 
-# The CLI and the wheel share one compile of the library: the wheel cannot
-# be built with `--profile test` (that builds a test harness), so it is
-# built with `dev` at opt-level 3, which are the `test` profile's settings
-# (Cargo.toml), hence the same compiled dependencies in the same folder
-# (target/debug). (What `cargo test --workspace` compiled is not reused:
-# the test build unifies features that dev-dependencies enable, such as
-# serde's `alloc`, into the library's dependencies, so its artifacts differ.)
-cargo build --profile test -p lumis
+# The CLI exactly as `cargo test --workspace` builds it (the same feature
+# resolution: building one of its tests, `cli`, builds the binary); after
+# `cargo test` this is a no-op.
+cargo test --workspace --no-run --test cli
+# The wheel with the same compiled library: it cannot be built with
+# `--profile test` (that would build a test harness), so it is built with
+# `dev` at opt-level 3, which are the `test` profile's settings
+# (Cargo.toml), in the same folder (target/debug); python/Cargo.toml turns
+# on the features the test build resolves. Then only PyO3 and the native
+# module are compiled.
 rm -rf target/wheels/python-tests
-CARGO_PROFILE_DEV_OPT_LEVEL=3 "$venv/bin/maturin" build --profile dev --strip \
+log=target/wheels/python-tests.log
+mkdir -p target/wheels
+if ! CARGO_PROFILE_DEV_OPT_LEVEL=3 "$venv/bin/maturin" build --profile dev --strip \
     --manifest-path python/Cargo.toml --interpreter "$venv/bin/python" \
-    --out target/wheels/python-tests --quiet
+    --out target/wheels/python-tests >"$log" 2>&1; then
+    cat "$log"
+    exit 1
+fi
+if grep -q "Compiling lumis-render" "$log"; then
+    echo "python-tests: the wheel compiled lumis-render again instead of reusing" \
+        "the test build's: align the features listed in python/Cargo.toml" >&2
+fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     --no-deps --force-reinstall target/wheels/python-tests/lumis-*.whl
 
