@@ -270,17 +270,7 @@ fn run(
     cancel: &AtomicBool,
     progress: &Mutex<Option<Progress>>,
 ) -> Result<Rendered, SessionError> {
-    // As `Session::new` derives them from a job: with only a time budget
-    // the sample count is unbounded.
-    let spp = match (job.budget.time, job.budget.spp) {
-        (Some(_), None) => 0,
-        _ => s.loaded.options.spp,
-    };
-    s.settings.spp = spp;
-    s.settings.seed = job.seed;
-    s.settings.threads = job.threads;
-    s.settings.time_limit = job.budget.time.map(Duration::from_secs_f64);
-    s.settings.clamp = job.clamp;
+    s.settings = lumis_render::session::run_settings(&job, &s.loaded.options);
     s.outputs = job.outputs.iter().map(|p| job.resolve(p)).collect();
     for o in &s.outputs {
         check_writable(o)?;

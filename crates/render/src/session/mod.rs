@@ -103,18 +103,7 @@ impl Session {
         for o in &outputs {
             check_writable(o)?;
         }
-        let o = &loaded.options;
-        // With only a time budget, the sample count is unbounded.
-        let spp = match (job.budget.time, job.budget.spp) {
-            (Some(_), None) => 0,
-            _ => o.spp,
-        };
-        let settings = RenderSettings {
-            time_limit: job.budget.time.map(Duration::from_secs_f64),
-            clamp: job.clamp,
-            inject_nan: job.inject_nan,
-            ..o.render_settings(spp, job.seed, job.threads)
-        };
+        let settings = run_settings(&job, &loaded.options);
         let hash = scene_hash(&loaded, &settings);
         Ok(Session {
             job,
@@ -247,6 +236,23 @@ impl Session {
             )));
         }
         Ok(ck.state.clone())
+    }
+}
+
+/// The render settings of `job` on a scene loaded with options `o` (a
+/// loaded scene rendered again with another seed, budget or clamp takes
+/// these too).
+pub fn run_settings(job: &RenderJob, o: &crate::load::RenderOptions) -> RenderSettings {
+    // With only a time budget, the sample count is unbounded.
+    let spp = match (job.budget.time, job.budget.spp) {
+        (Some(_), None) => 0,
+        _ => o.spp,
+    };
+    RenderSettings {
+        time_limit: job.budget.time.map(Duration::from_secs_f64),
+        clamp: job.clamp,
+        inject_nan: job.inject_nan,
+        ..o.render_settings(spp, job.seed, job.threads)
     }
 }
 
