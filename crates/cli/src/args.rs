@@ -26,6 +26,21 @@ pub enum Command {
     Compare(CompareArgs),
     /// Run an equal-time study (scenes x settings x budgets x seeds) and write an HTML report.
     Study(StudyArgs),
+    /// Merge the parts of a render (`render --passes A..B --partial FILE`) into
+    /// its image: bit-identical to rendering it whole.
+    Merge(MergeArgs),
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct MergeArgs {
+    /// Part files, in any order; together their pass ranges must cover the
+    /// render once.
+    #[arg(required = true, num_args = 1..)]
+    pub parts: Vec<PathBuf>,
+    /// Output image (.exr, .pfm or .png). Without it, `<name>.exr` and
+    /// `<name>.png` in the current folder, as `render` names them.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -148,6 +163,21 @@ pub struct RenderArgs {
     /// --time, --checkpoint*, --display-server, -q/-v and --stats may be given).
     #[arg(long, value_name = "FILE")]
     pub resume: Option<PathBuf>,
+    /// Render only passes A..B of the render (0-based, B excluded; a pass is
+    /// one sample per pixel, a progressive `photon` iteration `iterationspp`
+    /// passes) and save them as a part to --partial FILE, for `lumis merge`.
+    #[arg(long, value_name = "A..B", value_parser = parse_pass_range, requires = "partial")]
+    pub passes: Option<std::ops::Range<u32>>,
+    /// The part file of a --passes render (saved like a checkpoint: every
+    /// --checkpoint-every seconds, on interrupt and at the end; an
+    /// unfinished part continues with --resume FILE).
+    #[arg(
+        long,
+        value_name = "FILE",
+        requires = "passes",
+        conflicts_with = "checkpoint"
+    )]
+    pub partial: Option<PathBuf>,
     /// Stream the image as it converges to a tev viewer at HOST:PORT (tev listens on 127.0.0.1:14158).
     #[arg(long, value_name = "HOST:PORT")]
     pub display_server: Option<String>,
@@ -261,6 +291,16 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
         return Err("resolution must be at least 1x1".into());
     }
     Ok((w, h))
+}
+
+fn parse_pass_range(s: &str) -> Result<std::ops::Range<u32>, String> {
+    let bad = || format!("expected a pass range A..B (whole numbers, A < B), found `{s}`");
+    let (a, b) = s.split_once("..").ok_or_else(bad)?;
+    let (a, b) = (a.trim().parse::<u32>(), b.trim().parse::<u32>());
+    match (a, b) {
+        (Ok(a), Ok(b)) if a < b => Ok(a..b),
+        _ => Err(bad()),
+    }
 }
 
 fn parse_crop(s: &str) -> Result<[f32; 4], String> {

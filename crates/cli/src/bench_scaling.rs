@@ -78,6 +78,7 @@ fn render_path(scene: &Scene, res: u32, spp: u32, threads: usize) -> RenderOutco
         spp_per_pass: 1,
         clamp: None,
         inject_nan: None,
+        passes: None,
     };
     let path = Integrator::Path { max_depth: 5 };
     render(scene, &path, &settings, &|_| {}, &AtomicBool::new(false))

@@ -26,6 +26,13 @@ pub fn job_from_args(a: &RenderArgs) -> Result<RenderJob> {
         every: a.checkpoint_every,
     });
     job.inject_nan = a.inject_nan;
+    if let Some(p) = &a.partial {
+        job.passes = a.passes.clone();
+        job.checkpoint = Some(CheckpointSpec {
+            path: job.resolve(p),
+            every: a.checkpoint_every,
+        });
+    }
     Ok(job)
 }
 
@@ -88,7 +95,8 @@ pub fn resumed_job(a: &RenderArgs, mut job: RenderJob) -> Result<RenderJob> {
         || a.accel.is_some()
         || a.exposure != 0.0
         || !a.params.values.is_empty()
-        || a.inject_nan.is_some();
+        || a.inject_nan.is_some()
+        || a.passes.is_some();
     if changed {
         bail!(
             "--resume continues the saved render as it was set up: only -o, --threads, --time, \

@@ -24,6 +24,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
         Some(Command::Compare(a)) => compare_cmd(a),
         Some(Command::Study(a)) => crate::study::run(a),
+        Some(Command::Merge(a)) => merge_cmd(a),
     }
 }
 
@@ -136,9 +137,17 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         resume: resume_state,
     });
     reporter.finish();
+    let partial = session.job.passes.is_some();
+    let mut part_file = None;
     if let Some(sv) = saver.as_mut() {
-        if sv.save_outcome(&mut out) {
-            eprintln!("lumis: checkpoint {} at {} spp", sv.path.display(), out.spp);
+        let saved = sv.save_outcome(&mut out);
+        match (saved, partial) {
+            (true, false) => {
+                eprintln!("lumis: checkpoint {} at {} spp", sv.path.display(), out.spp)
+            }
+            (true, true) => part_file = Some(sv.path.clone()),
+            (false, true) => anyhow::bail!("the part was not saved: {}", sv.path.display()),
+            (false, false) => {}
         }
     }
     let command = std::env::args().collect::<Vec<_>>().join(" ");
@@ -147,8 +156,9 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         d.finish(img.data.clone());
     }
     let t = Instant::now();
-    let files = session.write(&img)?;
+    let mut files = session.write(&img)?;
     let write_time = t.elapsed();
+    files.extend(part_file);
     print_summary(&session, &out, &img, &files);
     if a.stats {
         let phases = Phases {
@@ -169,11 +179,52 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
         );
     }
     if out.interrupted {
-        eprintln!(
-            "lumis: interrupted: wrote the image so far ({} spp)",
-            out.spp
-        );
+        let what = match partial {
+            true => "saved the part so far (finish it with --resume)",
+            false => "wrote the image so far",
+        };
+        eprintln!("lumis: interrupted: {what} ({} spp)", out.spp);
         return Ok(ExitCode::from(EXIT_INTERRUPTED));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `lumis merge`: the parts' sums added, written as the whole render's image.
+fn merge_cmd(a: crate::args::MergeArgs) -> Result<ExitCode> {
+    use lumis_render::session::{merge, Part};
+    let t = Instant::now();
+    let parts = a
+        .parts
+        .iter()
+        .map(|p| Part::read(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let outputs = a
+        .output
+        .iter()
+        .map(|o| std::path::absolute(o).unwrap_or(o.clone()));
+    let (session, out) = merge(&parts, Some(outputs.collect()))?;
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let mut img = session.image(&out, Some(&command));
+    img.metadata
+        .push(("lumis:parts".into(), parts.len().to_string()));
+    let files = session.write(&img)?;
+    let names: Vec<String> = files.iter().map(|f| shown(f, &session.job.dir)).collect();
+    eprintln!(
+        "lumis: merged {} parts: {}x{} {} spp ({}) rendered in {:.2} s over all parts; merged in {:.2} s -> {}",
+        parts.len(),
+        img.width,
+        img.height,
+        out.spp,
+        session.loaded.options.integrator.name(),
+        out.elapsed.as_secs_f64(),
+        t.elapsed().as_secs_f64(),
+        names.join(", ")
+    );
+    if out.bad_samples > 0 {
+        eprintln!(
+            "lumis: the parts dropped {} NaN/infinite samples",
+            out.bad_samples
+        );
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -210,11 +261,14 @@ fn job_and_checkpoint(a: &RenderArgs) -> Result<(RenderJob, Option<(PathBuf, Che
 fn print_summary(session: &Session, out: &RenderOutcome, img: &RgbImage, files: &[PathBuf]) {
     let secs = out.elapsed.as_secs_f64();
     let names: Vec<String> = files.iter().map(|f| shown(f, &session.job.dir)).collect();
+    let spp = match &session.job.passes {
+        Some(r) => format!("passes {}..{} of {}", r.start, r.end, session.settings.spp),
+        None => format!("{} spp", out.spp),
+    };
     eprintln!(
-        "lumis: {}x{} {} spp ({}) in {:.2} s, {:.2} Mrays/s -> {}",
+        "lumis: {}x{} {spp} ({}) in {:.2} s, {:.2} Mrays/s -> {}",
         img.width,
         img.height,
-        out.spp,
         session.loaded.options.integrator.name(),
         secs,
         out.rays as f64 / secs.max(1e-9) / 1e6,

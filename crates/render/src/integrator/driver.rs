@@ -38,6 +38,51 @@ pub struct RenderSettings {
     /// Test hook: the sample at (x, y, index) becomes NaN, to prove bad
     /// samples are dropped and reported (`None` outside tests).
     pub inject_nan: Option<(u32, u32, u32)>,
+    /// A partial render: only these passes of the render `spp` describes
+    /// (see [`RenderSettings::pass_count`]). The film starts empty and the
+    /// integrator in its state at the first of them, so the parts' films
+    /// merge ([`Film::merge`]) to the bits of the whole render. `None`: all.
+    pub passes: Option<std::ops::Range<u32>>,
+}
+
+impl RenderSettings {
+    /// The passes of the whole render (`None` without a sample count: a
+    /// time budget alone sets no pass count).
+    pub fn pass_count(&self) -> Option<u32> {
+        (self.spp > 0).then(|| self.spp.div_ceil(self.spp_per_pass.max(1)))
+    }
+
+    /// Samples per pixel before pass `pass` (all passes but the last are whole).
+    pub fn spp_before(&self, pass: u32) -> u32 {
+        let n = pass.saturating_mul(self.spp_per_pass.max(1));
+        match self.spp {
+            0 => n,
+            t => n.min(t),
+        }
+    }
+
+    /// Refuses a pass range the render does not have.
+    pub fn check_passes(&self) -> Result<(), String> {
+        let Some(r) = &self.passes else {
+            return Ok(());
+        };
+        let Some(total) = self.pass_count() else {
+            return Err(
+                "a partial render (a pass range) needs a sample count, not a time budget alone"
+                    .into(),
+            );
+        };
+        if self.time_limit.is_some() {
+            return Err("a partial render (a pass range) cannot have a time budget: where a budget stops depends on the machine".into());
+        }
+        if r.start >= r.end || r.end > total {
+            return Err(format!(
+                "pass range {}..{} is not inside this render's passes 0..{total} (start < end <= {total})",
+                r.start, r.end
+            ));
+        }
+        Ok(())
+    }
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -269,7 +314,7 @@ pub fn render_with(
     scene: &Scene,
     integrator: &Integrator,
     settings: &RenderSettings,
-    hooks: RenderHooks,
+    mut hooks: RenderHooks,
 ) -> RenderOutcome {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
@@ -285,6 +330,15 @@ pub fn render_with(
             sampler: settings.sampler,
             spp_per_pass: settings.spp_per_pass.max(1),
         };
+        if hooks.resume.is_none() {
+            if let Some(r) = &settings.passes {
+                // A part starts where the whole render would be at its first pass.
+                let mut st = RenderState::new(Film::new(scene.camera.resolution, settings.crop));
+                st.spp_done = settings.spp_before(r.start);
+                st.integrator = Run::state_at(integrator, &start, r.start, st.spp_done);
+                hooks.resume = Some(st);
+            }
+        }
         let saved = hooks.resume.as_ref().map(|s| s.integrator.as_slice());
         let mut run = Run::new(integrator, scene, &start, saved);
         let mut out = match settings.inject_nan {
@@ -310,11 +364,17 @@ pub fn drive<P: Pass>(
         .unwrap_or_else(|| RenderState::new(Film::new(scene.camera.resolution, settings.crop)));
     let elapsed_before = state.elapsed;
     let per_pass = settings.spp_per_pass.max(1);
-    let limit = if settings.spp == 0 {
-        u32::MAX
-    } else {
-        settings.spp
+    let limit = match (settings.spp, &settings.passes) {
+        (0, _) => u32::MAX,
+        (_, Some(r)) => settings.spp_before(r.end),
+        (n, None) => n,
     };
+    // Progress counts a part's own passes.
+    let base = settings
+        .passes
+        .as_ref()
+        .map_or(0, |r| settings.spp_before(r.start));
+    let share = |done: u32| (done - base) as f64 / (limit - base).max(1) as f64;
     let mut interrupted = false;
     let mut pass_time_sum = Duration::ZERO;
     let mut samples_here = 0u32;
@@ -330,7 +390,8 @@ pub fn drive<P: Pass>(
         let pass_start = Instant::now();
         let tally = render_pass(scene, &*pass, settings, &mut state.film, done..done + n);
         state.spp_done += n;
-        state.film.splat_samples = state.spp_done;
+        // A part's splats are its own samples' (they merge by adding).
+        state.film.splat_samples += n;
         samples_here += n;
         passes_here += 1;
         rays_here.add(&tally.rays);
@@ -343,9 +404,9 @@ pub fn drive<P: Pass>(
         let fraction = match settings.time_limit {
             Some(t) if settings.spp == 0 => (elapsed.as_secs_f64() / t.as_secs_f64()).min(1.0),
             Some(t) => (elapsed.as_secs_f64() / t.as_secs_f64())
-                .max(done as f64 / limit as f64)
+                .max(share(done))
                 .min(1.0),
-            None => done as f64 / limit as f64,
+            None => share(done),
         };
         let pass_time = pass_start.elapsed();
         pass_time_sum += pass_time;
@@ -405,7 +466,8 @@ struct Tally {
     first_bad: Option<BadSample>,
 }
 
-fn min_bad(a: Option<BadSample>, b: Option<BadSample>) -> Option<BadSample> {
+/// The earlier of two first bad samples.
+pub(crate) fn min_bad(a: Option<BadSample>, b: Option<BadSample>) -> Option<BadSample> {
     match (a, b) {
         (Some(a), Some(b)) => Some(a.min(b)),
         (a, b) => a.or(b),

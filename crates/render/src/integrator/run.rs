@@ -78,6 +78,19 @@ impl<'a> Run<'a> {
         }
     }
 
+    /// The state [`Pass::save`] would give after the passes before pass
+    /// `pass` (`spp_done` samples per pixel) of a render started afresh:
+    /// what a partial render starting there continues from. Every
+    /// integrator's state follows from the pass count alone when no time
+    /// budget steers it.
+    pub fn state_at(integrator: &Integrator, start: &Start, pass: u32, spp_done: u32) -> Vec<u8> {
+        match integrator {
+            Integrator::Photon(s) => PhotonRun::state_at(s, start, spp_done),
+            Integrator::Vcm(_) => VcmRun::state_at(pass),
+            _ => Vec::new(),
+        }
+    }
+
     /// Photon pass figures, for the `photon` integrator.
     pub fn photon_stats(&self) -> Option<super::photon::PhotonStats> {
         match self {

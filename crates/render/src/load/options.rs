@@ -42,6 +42,7 @@ impl RenderOptions {
             spp_per_pass: 1,
             clamp: None,
             inject_nan: None,
+            passes: None,
         }
     }
 

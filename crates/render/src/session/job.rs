@@ -74,6 +74,13 @@ pub struct RenderJob {
     /// Test hook: the sample at pixel (x, y) with this index becomes NaN.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inject_nan: Option<(u32, u32, u32)>,
+    /// A partial render: only these passes (one sample per pixel each) of
+    /// the render the rest of the job describes. Its result is a part (a
+    /// checkpoint of the range: [`super::Session::part`]) that merges with
+    /// the other ranges' parts to the bits of the whole render
+    /// (`session::merge`); it writes no image unless `outputs` names some.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub passes: Option<std::ops::Range<u32>>,
 }
 
 impl RenderJob {
@@ -123,6 +130,14 @@ impl RenderJob {
         if self.budget.spp == Some(0) {
             return Err("the sample count must be at least 1".into());
         }
+        if let Some(r) = &self.passes {
+            if r.start >= r.end {
+                return Err(format!(
+                    "the pass range {}..{} is empty: give A..B with A < B",
+                    r.start, r.end
+                ));
+            }
+        }
         Ok(())
     }
 }
@@ -146,6 +161,7 @@ mod tests {
             path: "c.ckpt".into(),
             every: 3.0,
         });
+        j.passes = Some(3..7);
         let back = RenderJob::from_json(&j.to_json()).unwrap();
         assert_eq!(back, j);
         assert!(RenderJob::from_json("{\"seed\": \"x\"}").is_err());

@@ -4,9 +4,11 @@
 //! workers) builds a job and drives a session; none repeats these steps.
 
 mod job;
+mod merge;
 mod output;
 
 pub use job::{Accel, Budget, CheckpointSpec, RenderJob};
+pub use merge::{merge, Part};
 pub use output::{check_writable, default_outputs};
 
 use crate::checkpoint::{Checkpoint, Fnv};
@@ -75,6 +77,16 @@ pub struct Session {
 impl Session {
     /// Parses and builds the job's scene, checks its outputs.
     pub fn new(job: RenderJob) -> Result<Session, SessionError> {
+        Session::build(job, true)
+    }
+
+    /// [`Session::new`] for a front end that takes the image itself: no
+    /// outputs, not even the default ones (nothing is probed or written).
+    pub fn without_outputs(job: RenderJob) -> Result<Session, SessionError> {
+        Session::build(job, false)
+    }
+
+    fn build(job: RenderJob, write: bool) -> Result<Session, SessionError> {
         job.check()?;
         let mut phases = Phases::default();
         let t = Instant::now();
@@ -94,6 +106,9 @@ impl Session {
         select_accel(&mut loaded.scene, job.accel)?;
         phases.build = t.elapsed();
         let outputs: Vec<PathBuf> = match job.outputs.is_empty() {
+            _ if !write => Vec::new(),
+            // A part is saved as a part, not an image.
+            true if job.passes.is_some() => Vec::new(),
             true => default_outputs(loaded.options.filename.as_deref())
                 .into_iter()
                 .map(|p| job.resolve(&p))
@@ -104,6 +119,7 @@ impl Session {
             check_writable(o)?;
         }
         let settings = run_settings(&job, &loaded.options);
+        settings.check_passes()?;
         let hash = scene_hash(&loaded, &settings);
         Ok(Session {
             job,
@@ -225,6 +241,12 @@ impl Session {
         }
     }
 
+    /// The part `out` is, when this session is a partial render (a
+    /// checkpoint of its pass range, which `merge` combines).
+    pub fn part(&self, out: &RenderOutcome) -> Checkpoint {
+        self.checkpoint(out.state())
+    }
+
     /// The state to continue from `ck`, refused if it belongs to another
     /// scene, other input files or other settings.
     pub fn resume_state(&self, ck: &Checkpoint, name: &str) -> Result<RenderState, SessionError> {
@@ -233,6 +255,18 @@ impl Session {
                 "{name}: this checkpoint belongs to another scene or other settings, or a file \
                  the scene reads has changed since (scene hash {:016x}, this render {:016x})",
                 ck.scene_hash, self.hash
+            )));
+        }
+        let passes = RenderJob::from_json(&ck.job).map(|j| j.passes);
+        if passes.as_ref().ok() != Some(&self.job.passes) {
+            let range = |p: &Option<std::ops::Range<u32>>| match p {
+                Some(r) => format!("passes {}..{}", r.start, r.end),
+                None => "all passes".into(),
+            };
+            return Err(SessionError::Other(format!(
+                "{name}: this checkpoint renders {}, this render {}",
+                passes.map_or("?".into(), |p| range(&p)),
+                range(&self.job.passes)
             )));
         }
         Ok(ck.state.clone())
@@ -252,6 +286,7 @@ pub fn run_settings(job: &RenderJob, o: &crate::load::RenderOptions) -> RenderSe
         time_limit: job.budget.time.map(Duration::from_secs_f64),
         clamp: job.clamp,
         inject_nan: job.inject_nan,
+        passes: job.passes.clone(),
         ..o.render_settings(spp, job.seed, job.threads)
     }
 }
@@ -266,7 +301,8 @@ pub fn load_checkpoint(path: &Path) -> Result<(RenderJob, Checkpoint), SessionEr
 
 /// Ties a checkpoint to the scene and every setting that changes the image:
 /// the scene's inputs (its text and every file read to build it: included
-/// files, meshes, images, spectra) and the render settings.
+/// files, meshes, images, spectra) and the render settings, but not a
+/// partial render's pass range (the parts of one render share it).
 fn scene_hash(l: &LoadedScene, s: &RenderSettings) -> u64 {
     let mut h = Fnv::default();
     h.write(&crate::load::inputs_hash(&l.inputs).to_le_bytes())

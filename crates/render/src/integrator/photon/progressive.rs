@@ -88,6 +88,49 @@ pub struct IterState {
 }
 
 impl IterState {
+    /// Moves on to the next iteration if this one has had its `s_iter`
+    /// samples per pixel (radius by [`next_radius2`] with `a`); `true` if it did.
+    pub fn next_if_done(&mut self, s_iter: u32, a: f64) -> bool {
+        if self.spp_done < self.start_spp.saturating_add(s_iter) {
+            return false;
+        }
+        self.scale2 = next_radius2(self.scale2, self.index, a);
+        self.index += 1;
+        self.start_spp = self.spp_done;
+        true
+    }
+
+    /// Sets the photon counts when none are set yet (the first iteration;
+    /// every iteration if both are 0), and with them the first radius.
+    pub fn choose_counts(&mut self, counts: (u64, u64)) {
+        if self.global_photons == 0 && self.caustic_photons == 0 {
+            (self.global_photons, self.caustic_photons) = counts;
+            self.scale2 = 1.0;
+        }
+    }
+
+    /// The state after the passes of a render without a time budget
+    /// reach `spp` samples per pixel: the driver's passes of `per_pass`
+    /// samples (the last cut at `target`, 0: none) replayed, with the
+    /// steps the render takes before each pass.
+    pub fn replay(
+        spp: u32,
+        per_pass: u32,
+        target: u32,
+        s_iter: u32,
+        a: f64,
+        counts: (u64, u64),
+    ) -> IterState {
+        let mut it = IterState::default();
+        let target = if target == 0 { u32::MAX } else { target };
+        while it.spp_done < spp {
+            it.next_if_done(s_iter, a);
+            it.choose_counts(counts);
+            it.spp_done += per_pass.max(1).min(target - it.spp_done);
+        }
+        it
+    }
+
     pub const BYTES: usize = 8 + 4 + 4 + 8 + 8 + 8;
 
     pub fn encode(&self, out: &mut Vec<u8>) {

@@ -11,7 +11,7 @@
 use super::budget::choose_counts;
 use super::camera;
 use super::gather::PhotonCtx;
-use super::progressive::{iteration_seed, next_radius2, stop_at_power_of_two, IterState};
+use super::progressive::{iteration_seed, stop_at_power_of_two, IterState};
 use super::radius_field::RadiusFields;
 use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii};
 use crate::geometry::Ray;
@@ -94,11 +94,8 @@ impl<'a> PhotonRun<'a> {
         let p = self.settings.progressive.expect("progressive settings");
         let s_iter = self.iteration_spp();
         let mut it = self.iter.expect("progressive state");
-        if it.spp_done >= it.start_spp.saturating_add(s_iter) {
+        if it.next_if_done(s_iter, p.shrink as f64) {
             self.maps = None;
-            it.scale2 = next_radius2(it.scale2, it.index, p.shrink as f64);
-            it.index += 1;
-            it.start_spp = it.spp_done;
         }
         if self.maps.is_some() {
             return true;
@@ -108,8 +105,7 @@ impl<'a> PhotonRun<'a> {
             let Some(c) = self.photon_counts(cancel) else {
                 return false;
             };
-            (it.global_photons, it.caustic_photons) = c;
-            it.scale2 = 1.0;
+            it.choose_counts(c);
         }
         let mut s = self.settings.clone();
         (s.global_photons, s.caustic_photons) = (it.global_photons, it.caustic_photons);
@@ -235,6 +231,30 @@ impl<'a> PhotonRun<'a> {
             self.alpha =
                 (r.spp_done as f64 + (left / per_sample.max(1e-9)).floor()).max(1.0) as f32;
         }
+    }
+
+    /// [`Self::save`]'s output after `spp` samples per pixel of a render
+    /// without a time budget (what a partial render starting there needs):
+    /// single map, `alpha` is the sample count, as a fresh run sets it;
+    /// progressive, the iteration replayed from the pass boundaries.
+    pub fn state_at(settings: &PhotonSettings, start: &Start, spp: u32) -> Vec<u8> {
+        let Some(p) = settings.progressive else {
+            return Vec::new();
+        };
+        let counts = (settings.global_photons, settings.caustic_photons);
+        let s_iter = p.iteration_spp.max(1);
+        let it = IterState::replay(
+            spp,
+            start.spp_per_pass,
+            start.spp,
+            s_iter,
+            p.shrink as f64,
+            counts,
+        );
+        // `alpha` is set again when the iteration's maps are built.
+        let mut b = 1f32.to_bits().to_le_bytes().to_vec();
+        it.encode(&mut b);
+        b
     }
 
     /// The state a resumed render needs: `alpha` (4 bytes), then in the

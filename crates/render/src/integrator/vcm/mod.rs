@@ -190,7 +190,12 @@ impl<'a> VcmRun<'a> {
     }
 
     pub fn save(&self) -> Vec<u8> {
-        self.iteration.to_le_bytes().to_vec()
+        Self::state_at(self.iteration as u32)
+    }
+
+    /// The saved state after `passes` passes: their count.
+    pub fn state_at(passes: u32) -> Vec<u8> {
+        (passes as u64).to_le_bytes().to_vec()
     }
 }
 
