@@ -211,6 +211,32 @@ mod tests {
     }
 
     #[test]
+    fn replay_follows_the_iterations_over_pass_boundaries() {
+        let a = 0.5;
+        let counts = (10, 20);
+        // Iterations of 2 samples, passes of 1: at 5, iteration 2 began at 4.
+        let it = IterState::replay(5, 1, 8, 2, a, counts);
+        let r2 = next_radius2(next_radius2(1.0, 0, a), 1, a);
+        let expect = IterState {
+            index: 2,
+            start_spp: 4,
+            spp_done: 5,
+            scale2: r2,
+            global_photons: 10,
+            caustic_photons: 20,
+        };
+        assert_eq!(it, expect);
+        // Passes of 3 samples overrun iterations of 2: they begin at 0, 3, 6.
+        let it = IterState::replay(9, 3, 0, 2, a, counts);
+        assert_eq!((it.index, it.start_spp, it.spp_done), (2, 6, 9));
+        // Nothing done: the fresh state.
+        assert_eq!(
+            IterState::replay(0, 1, 8, 2, a, counts),
+            IterState::default()
+        );
+    }
+
+    #[test]
     fn state_round_trips() {
         let st = IterState {
             index: 12,
