@@ -126,3 +126,27 @@ fn bad_pass_ranges_are_refused() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("nothing.lpart"), "{}", stderr(&o));
 }
+
+/// `scripts/render-parts.sh` (the loop that also drives a Slurm array)
+/// splits the passes so the merge equals the whole render.
+#[test]
+fn the_parts_script_renders_and_merges() {
+    let d = temp_dir("cli-parts", "script");
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/render-parts.sh");
+    let args = ["--integrator", "bdpt", "--resolution", "24x16", "--spp", "7"];
+    let o = std::process::Command::new("bash")
+        .arg(&script)
+        .args(["3", "out", "--"])
+        .args(args)
+        .env("LUMIS", env!("CARGO_BIN_EXE_lumis"))
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    for i in 0..3 {
+        assert!(d.join(format!("out/part-{i}.lpart")).exists());
+    }
+    let o = lumis(&d, &[&["render", "-q", "-o", "whole.exr"][..], &args[..]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(bits(&d.join("out/image.exr")) == bits(&d.join("whole.exr")));
+}
