@@ -133,7 +133,14 @@ fn bad_pass_ranges_are_refused() {
 fn the_parts_script_renders_and_merges() {
     let d = temp_dir("cli-parts", "script");
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/render-parts.sh");
-    let args = ["--integrator", "bdpt", "--resolution", "24x16", "--spp", "7"];
+    let args = [
+        "--integrator",
+        "bdpt",
+        "--resolution",
+        "24x16",
+        "--spp",
+        "7",
+    ];
     let o = std::process::Command::new("bash")
         .arg(&script)
         .args(["3", "out", "--"])
@@ -146,7 +153,10 @@ fn the_parts_script_renders_and_merges() {
     for i in 0..3 {
         assert!(d.join(format!("out/part-{i}.lpart")).exists());
     }
-    let o = lumis(&d, &[&["render", "-q", "-o", "whole.exr"][..], &args[..]].concat());
+    let o = lumis(
+        &d,
+        &[&["render", "-q", "-o", "whole.exr"][..], &args[..]].concat(),
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(bits(&d.join("out/image.exr")) == bits(&d.join("whole.exr")));
 }

@@ -7,8 +7,12 @@
 //!
 //! Layout (little-endian): magic `LUMISCKP`, format version (u32), lumis
 //! version (string), scene hash (u64), the job (a string: the session's
-//! serialized `RenderJob`), the state, then an FNV-1a hash of everything
-//! before it (catches truncated or damaged files).
+//! serialized `RenderJob`), the state (the film's pixel and splat sums
+//! packed by `pack.rs`), then an FNV-1a hash of everything before it
+//! (catches truncated or damaged files). Partial renders' parts
+//! (`session::merge`) are checkpoints of their pass range.
+
+mod pack;
 
 use crate::film::{Film, Pixel, PixelBounds};
 use crate::integrator::{BadSample, RenderState};
@@ -17,8 +21,9 @@ use std::time::Duration;
 
 const MAGIC: &[u8; 8] = b"LUMISCKP";
 /// Bumped whenever the layout changes.
-pub const FORMAT_VERSION: u32 = 3;
-/// Bytes per saved pixel: n, then the fixed-point sums and sums of squares.
+pub const FORMAT_VERSION: u32 = 4;
+/// Bytes per saved pixel before packing (`pack.rs`): n, then the
+/// fixed-point sums and sums of squares.
 const PIXEL_BYTES: usize = 8 + 6 * 16;
 /// Bytes per pixel of splat sums.
 const SPLAT_BYTES: usize = 3 * 16;
@@ -115,17 +120,8 @@ impl Checkpoint {
         }
         o.extend_from_slice(&f.splat_samples.to_le_bytes());
         o.push(!f.splats.is_empty() as u8);
-        for p in &f.pixels {
-            o.extend_from_slice(&p.n.to_le_bytes());
-            for v in p.sum.iter().chain(&p.squares) {
-                o.extend_from_slice(&v.to_le_bytes());
-            }
-        }
-        for s in &f.splats {
-            for v in s {
-                o.extend_from_slice(&v.to_le_bytes());
-            }
-        }
+        pack::pack(&f.pixels, PIXEL_BYTES, put_pixel, &mut o);
+        pack::pack(&f.splats, SPLAT_BYTES, put_splat, &mut o);
         let h = Fnv::default().write(&o).0;
         o.extend_from_slice(&h.to_le_bytes());
         o
@@ -193,29 +189,17 @@ impl Checkpoint {
         }
         let splat_samples = r.u32()?;
         let has_splats = r.take(1)?[0] != 0;
-        let per_pixel = (PIXEL_BYTES + if has_splats { SPLAT_BYTES } else { 0 }) as u64;
-        if bounds.area().checked_mul(per_pixel) != Some(r.left() as u64) {
+        if bounds.area() > crate::film::MAX_PIXELS {
+            return Err(damaged("bad film bounds"));
+        }
+        let area = bounds.area() as usize;
+        let rest = &r.b[r.at..];
+        let (pixels, used) = pack::unpack(rest, area, PIXEL_BYTES, get_pixel).map_err(damaged)?;
+        let splat_count = if has_splats { area } else { 0 };
+        let (splats, used2) =
+            pack::unpack(&rest[used..], splat_count, SPLAT_BYTES, get_splat).map_err(damaged)?;
+        if used + used2 != rest.len() {
             return Err(damaged("pixel data does not match the film size"));
-        }
-        let mut pixels = Vec::with_capacity(bounds.area() as usize);
-        for _ in 0..bounds.area() {
-            let n = r.u64()?;
-            let mut v = [0i128; 6];
-            for x in &mut v {
-                *x = r.i128()?;
-            }
-            pixels.push(Pixel {
-                n,
-                sum: [v[0], v[1], v[2]],
-                squares: [v[3], v[4], v[5]],
-            });
-        }
-        let mut splats = Vec::new();
-        if has_splats {
-            splats.reserve(bounds.area() as usize);
-            for _ in 0..bounds.area() {
-                splats.push([r.i128()?, r.i128()?, r.i128()?]);
-            }
         }
         Ok(Checkpoint {
             lumis_version,
@@ -270,6 +254,35 @@ impl Checkpoint {
     }
 }
 
+fn put_pixel(p: &Pixel, o: &mut Vec<u8>) {
+    o.extend_from_slice(&p.n.to_le_bytes());
+    for v in p.sum.iter().chain(&p.squares) {
+        o.extend_from_slice(&v.to_le_bytes());
+    }
+}
+
+fn put_splat(s: &[i128; 3], o: &mut Vec<u8>) {
+    for v in s {
+        o.extend_from_slice(&v.to_le_bytes());
+    }
+}
+
+fn i128_at(b: &[u8], at: usize) -> i128 {
+    i128::from_le_bytes(b[at..at + 16].try_into().expect("16 bytes"))
+}
+
+fn get_pixel(b: &[u8]) -> Pixel {
+    Pixel {
+        n: u64::from_le_bytes(b[..8].try_into().expect("8 bytes")),
+        sum: [i128_at(b, 8), i128_at(b, 24), i128_at(b, 40)],
+        squares: [i128_at(b, 56), i128_at(b, 72), i128_at(b, 88)],
+    }
+}
+
+fn get_splat(b: &[u8]) -> [i128; 3] {
+    [i128_at(b, 0), i128_at(b, 16), i128_at(b, 32)]
+}
+
 fn put_str(o: &mut Vec<u8>, s: &str) {
     o.extend_from_slice(&(s.len() as u32).to_le_bytes());
     o.extend_from_slice(s.as_bytes());
@@ -300,9 +313,6 @@ impl Reader<'_> {
     }
     fn u64(&mut self) -> Result<u64, CheckpointError> {
         Ok(u64::from_le_bytes(self.take(8)?.try_into().unwrap()))
-    }
-    fn i128(&mut self) -> Result<i128, CheckpointError> {
-        Ok(i128::from_le_bytes(self.take(16)?.try_into().unwrap()))
     }
     fn string(&mut self) -> Result<String, CheckpointError> {
         let n = self.u32()? as usize;
