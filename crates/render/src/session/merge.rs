@@ -52,17 +52,26 @@ impl Part {
 /// What must be equal in the jobs of one render's parts (the scene hash
 /// checks the scene's content and the settings derived from the rest;
 /// this adds what the hash leaves to the job: the ray-tracing backend,
-/// whose rays may differ in their last bits).
+/// whose rays may differ in their last bits). Overrides are compared
+/// without their origin, a label for diagnostics (`--resolution` from the
+/// CLI, `resolution=` from Python: parts of both merge).
 fn same_render(a: &RenderJob, b: &RenderJob) -> bool {
+    let overrides = |j: &RenderJob| -> Vec<(String, Option<String>, String)> {
+        j.overrides
+            .items
+            .iter()
+            .map(|o| (o.directive.clone(), o.ty.clone(), o.params.clone()))
+            .collect()
+    };
     (
-        &a.overrides,
+        overrides(a),
         a.seed,
         a.budget.spp,
         a.clamp,
         a.accel,
         a.inject_nan,
     ) == (
-        &b.overrides,
+        overrides(b),
         b.seed,
         b.budget.spp,
         b.clamp,

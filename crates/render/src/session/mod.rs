@@ -131,6 +131,21 @@ impl Session {
         })
     }
 
+    /// Points this loaded session at `job`, which builds the same scene
+    /// (only its seed, budget, threads, clamp, pass range or outputs
+    /// differ): its settings and scene hash follow from it as
+    /// [`Session::new`] makes them (so its checkpoints and parts are the
+    /// job's). Outputs are the caller's to set.
+    pub fn set_job(&mut self, job: RenderJob) -> Result<(), SessionError> {
+        job.check()?;
+        let settings = run_settings(&job, &self.loaded.options);
+        settings.check_passes()?;
+        self.hash = scene_hash(&self.loaded, &settings);
+        self.settings = settings;
+        self.job = job;
+        Ok(())
+    }
+
     /// Renders with the job's integrator; `hooks.resume` continues a
     /// checkpoint's state (see [`Session::resume_state`]).
     pub fn render(&self, hooks: RenderHooks) -> RenderOutcome {
