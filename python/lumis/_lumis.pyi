@@ -39,6 +39,11 @@ class Job:
     @outputs.setter
     def outputs(self, value: Sequence[_Path]) -> None: ...
     @property
+    def passes(self) -> Optional[Tuple[int, int]]:
+        """A partial render's passes (start, end), or None for all."""
+    @passes.setter
+    def passes(self, value: Optional[Tuple[int, int]]) -> None: ...
+    @property
     def dir(self) -> Path:
         """The folder relative paths resolve against."""
     @dir.setter
@@ -72,6 +77,12 @@ class Session:
     def integrator(self) -> str: ...
     @property
     def spp(self) -> int: ...
+    @property
+    def pass_count(self) -> Optional[int]:
+        """The whole render's passes (None: a time budget alone)."""
+    @property
+    def iteration_passes(self) -> int:
+        """Passes per progressive photon iteration (1 otherwise)."""
     def can_render(self, job: Job) -> bool: ...
     def start(self, job: Job) -> "Task": ...
 
@@ -83,11 +94,23 @@ class Task:
     def wait(self, timeout: Optional[float] = None) -> bool: ...
     def cancel(self) -> None: ...
     def progress(self) -> Optional[Tuple[float, int, float]]: ...
-    def result(
-        self,
-    ) -> Tuple[
-        bytearray, int, int, Dict[str, str], Dict[str, Any], List[Path], Optional[str]
-    ]: ...
+    def result(self) -> "_Result":
+        """(pixels, width, height, metadata, stats, written, write_error, part)."""
+
+_Result = Tuple[
+    bytearray,
+    int,
+    int,
+    Dict[str, str],
+    Dict[str, Any],
+    List[Path],
+    Optional[str],
+    Optional[bytes],
+]
+
+def merge(
+    parts: Sequence[Union[bytes, _Path]], outputs: Optional[Sequence[_Path]] = None
+) -> _Result: ...
 
 def load(job: Job) -> Loading: ...
 def parameters() -> Dict[str, Dict[str, str]]: ...

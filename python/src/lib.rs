@@ -11,6 +11,9 @@
 //! - `session`: a loaded scene ([`session::Session`]) and renders running
 //!   on a Rust thread ([`session::Task`]) that Python polls, so Ctrl-C
 //!   reaches Python while the GIL is released;
+//! - `parts`: merging partial renders (parts) into the whole image;
+//! - `rendered`: a render's result as Python values;
+//! - `thread`: work on a Rust thread, waited for without the GIL;
 //! - `images`: reading, writing and comparing images;
 //! - `errors`: library errors as Python exceptions.
 
@@ -18,7 +21,10 @@ mod errors;
 mod images;
 mod job;
 mod params;
+mod parts;
+mod rendered;
 mod session;
+mod thread;
 
 use pyo3::prelude::*;
 
@@ -33,6 +39,7 @@ fn _lumis(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<session::Task>()?;
     m.add_function(wrap_pyfunction!(session::load, m)?)?;
     m.add_function(wrap_pyfunction!(params::parameters, m)?)?;
+    m.add_function(wrap_pyfunction!(parts::merge, m)?)?;
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::compare, m)?)?;
