@@ -1,0 +1,302 @@
+"""lumis across machines, on a Ray cluster.
+
+    >>> import lumis, lumis.distributed
+    >>> job = lumis.Job("/shared/scenes/room.pbrt", spp=1024, integrator="photon")
+    >>> img = lumis.distributed.render(job, address="head:6379", tasks=64)
+    >>> lumis.distributed.study("/shared/studies/caustics.toml", address="auto")
+
+:func:`render` cuts a job's passes into ranges, renders each range as a
+Ray task (:func:`lumis.render_part`) and merges the parts at the caller
+(:func:`lumis.merge`): the image is bit for bit the one :func:`lumis.render`
+gives on one machine. A task whose worker dies is run again (Ray's
+``max_retries``); a part depends only on its range, so a rerun gives the
+same bytes. :func:`study` runs a study's runs as tasks into its shared
+folder, then the study once more at the caller, which finds them finished
+and writes the report ``lumis study`` writes.
+
+Only the parts travel through Ray's object store. Scenes and the files
+they read reach the workers by their path: the job's scene path is made
+absolute and must name the same, unchanged files on every machine (a
+shared file system, or the same copy at the same path); a scene changed
+between parts is refused by the merge (the scene hash). ``ray`` is
+imported when first needed; install it with ``pip install ray``.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time as _time
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import lumis
+from lumis import Image, Job, PathLike, Scene
+
+__all__ = ["render", "split", "study"]
+
+# How often the caller wakes up to report progress.
+_POLL = 0.25
+
+
+def _ray() -> Any:
+    try:
+        import ray
+    except ImportError as e:
+        raise ImportError(
+            "lumis.distributed needs Ray: `pip install ray` (on the caller and on every worker)"
+        ) from e
+    return ray
+
+
+def _connect(address: Optional[str]) -> Any:
+    """Ray, connected: to ``address`` (None: a running connection, else
+    Ray's default: ``RAY_ADDRESS`` or a new local cluster)."""
+    ray = _ray()
+    if not ray.is_initialized():
+        ray.init(address=address, logging_level="warning", log_to_driver=False)
+    return ray
+
+
+def split(passes: int, tasks: int, align: int = 1) -> List[Tuple[int, int]]:
+    """``passes`` cut into at most ``tasks`` ranges ``(start, end)`` of
+    nearly equal length that tile ``0..passes``, every boundary a multiple
+    of ``align`` (a progressive photon render's passes per iteration, so
+    no range starts inside an iteration; fewer ranges when there are
+    fewer iterations than tasks)."""
+    if passes < 1 or tasks < 1 or align < 1:
+        raise ValueError(f"split({passes}, {tasks}, {align}): all must be >= 1")
+    units = -(-passes // align)
+    n = min(tasks, units)
+    cuts = [min(passes, (units * k // n) * align) for k in range(n + 1)]
+    return [(a, b) for a, b in zip(cuts, cuts[1:])]
+
+
+def _render_range(
+    job_json: str, start: int, end: int, index: int, reporter: Any
+) -> bytes:
+    """A Ray task: passes ``start..end`` of the job, as the part's bytes;
+    progress (passes done) goes to the ``reporter`` actor."""
+    job = Job.from_json(job_json)
+    last = [0.0]
+
+    def progress(fraction: float, spp: int, seconds: float) -> None:
+        now = _time.monotonic()
+        if reporter is not None and (now - last[0] >= 0.5 or fraction >= 1.0):
+            last[0] = now
+            # `spp` counts from the render's start: this range's passes.
+            reporter.report.remote(index, max(0, spp - start))
+
+    return lumis.render_part(job, start, end, progress=progress)
+
+
+class _Progress:
+    """A Ray actor the tasks report to: passes done per task."""
+
+    def __init__(self, n: int) -> None:
+        self.done = [0] * n
+
+    def report(self, index: int, passes: int) -> None:
+        self.done[index] = passes
+
+    def total(self) -> int:
+        return sum(self.done)
+
+
+def render(
+    job: Union[Job, Scene, PathLike, None],
+    address: Optional[str] = None,
+    tasks: Optional[int] = None,
+    progress: Union[bool, Callable[[float, int, float], Any]] = True,
+    *,
+    output: Any = None,
+    max_retries: int = 3,
+    num_cpus: float = 1,
+    **params: Any,
+) -> Image:
+    """Renders ``job`` (a :class:`lumis.Job`, a :class:`lumis.Scene`'s job,
+    a scene path, or None for the built-in scene; ``params`` as for
+    :func:`lumis.render`, e.g. ``spp=``, ``seed=``, ``integrator=``) as
+    Ray tasks, and returns the merged :class:`lumis.Image`, bit for bit
+    :func:`lumis.render`'s.
+
+    - ``address``: the cluster (``"auto"``, ``"host:port"``; None: the
+      current connection, else Ray's default);
+    - ``tasks``: ranges of passes to render, one task each (default: the
+      cluster's CPUs); at most the pass count (the sample count), and for
+      progressive ``photon`` at most the iterations, since ranges start on
+      iteration boundaries;
+    - ``progress``: True prints one line on stderr (tasks finished, passes
+      done), False nothing, a callable is called as ``progress(fraction,
+      passes_done, seconds)``;
+    - ``output``: files to write the image to (at the caller);
+    - ``max_retries``: reruns of a task whose worker dies;
+    - ``num_cpus``: CPUs Ray reserves per task (each task renders with
+      ``threads=`` of the job: by default all cores of its machine).
+
+    The scene path is made absolute: every worker must see the same files
+    there. A time budget is refused (parts need a sample count)."""
+    base = job.job if isinstance(job, Scene) else job
+    if isinstance(base, Job):
+        j = base.with_params(**params)
+    else:
+        j = Job(None if base is None else os.fspath(base), **params)
+    if j.scene is not None:
+        j.scene = j.scene_path()
+    if j.time is not None:
+        raise ValueError("a distributed render needs a sample count, not a time budget")
+    # The pass count and iteration length, as the job's scene defines them.
+    loading = lumis._lumis.load(j)
+    while not loading.wait(lumis._POLL):
+        pass
+    session = loading.result()
+    total = session.pass_count
+    ray = _connect(address)
+    n = tasks or max(1, int(ray.cluster_resources().get("CPU", 1)))
+    ranges = split(total, n, session.iteration_passes)
+    del session
+    parts = _run_tasks(ray, j, ranges, progress, max_retries, num_cpus)
+    return lumis.merge(parts, output=output)
+
+
+def _run_tasks(
+    ray: Any,
+    job: Job,
+    ranges: Sequence[Tuple[int, int]],
+    progress: Union[bool, Callable[[float, int, float], Any]],
+    max_retries: int,
+    num_cpus: float,
+) -> List[bytes]:
+    """The parts of ``ranges``, rendered as Ray tasks; progress reported."""
+    total = ranges[-1][1]
+    actor = ray.remote(num_cpus=0)(_Progress).remote(len(ranges))
+    task = ray.remote(_render_range).options(
+        max_retries=max_retries, retry_exceptions=False, num_cpus=num_cpus
+    )
+    text = job.to_json()
+    refs = [task.remote(text, a, b, i, actor) for i, (a, b) in enumerate(ranges)]
+    report = _reporter(progress, len(ranges))
+    t0 = _time.monotonic()
+    try:
+        pending = list(refs)
+        while pending:
+            _, pending = ray.wait(pending, num_returns=len(pending), timeout=_POLL)
+            if report is not None:
+                done = ray.get(actor.total.remote())
+                report(done / total, done, _time.monotonic() - t0, len(refs) - len(pending))
+        return ray.get(refs)
+    except BaseException:
+        for r in refs:
+            ray.cancel(r, force=True)
+        raise
+    finally:
+        if isinstance(report, _Line):
+            report.finish()
+        ray.kill(actor)
+
+
+def _reporter(progress: Any, ntasks: int) -> Optional[Callable[..., Any]]:
+    if callable(progress):
+        return lambda f, p, s, _done: progress(f, p, s)
+    return _Line(ntasks) if progress else None
+
+
+class _Line:
+    """One line of progress on stderr: rewritten in place on a terminal,
+    else printed every 5 s and at the end."""
+
+    def __init__(self, ntasks: int) -> None:
+        self.ntasks = ntasks
+        self.tty = getattr(sys.stderr, "isatty", lambda: False)()
+        self.last: Optional[float] = None
+        self.width = 0
+
+    def __call__(self, fraction: float, passes: int, seconds: float, done: int) -> None:
+        now = _time.monotonic()
+        end = done == self.ntasks
+        if self.last is not None and now - self.last < (0.1 if self.tty else 5.0) and not end:
+            return
+        line = (
+            f"lumis: {done}/{self.ntasks} tasks, {fraction * 100:5.1f}% of passes "
+            f"({passes}), {seconds:.1f} s"
+        )
+        if self.tty:
+            sys.stderr.write("\r" + line.ljust(self.width))
+            self.width = len(line)
+        else:
+            sys.stderr.write(line + "\n")
+        self.last = now
+        sys.stderr.flush()
+
+    def finish(self) -> None:
+        if self.tty and self.width:
+            sys.stderr.write("\r" + " " * self.width + "\r")
+            sys.stderr.flush()
+
+
+def _study_run(config: str, out: str, run_id: str) -> Dict[str, Any]:
+    """A Ray task: one run of a study, recorded in its folder."""
+    task = lumis._lumis.start_study(config, out, run=run_id, quiet=True)
+    while not task.wait(lumis._POLL):
+        pass
+    return task.result()
+
+
+def study(
+    config: PathLike,
+    address: Optional[str] = None,
+    *,
+    out: Optional[PathLike] = None,
+    progress: bool = True,
+    max_retries: int = 3,
+    num_cpus: float = 1,
+) -> Dict[str, Any]:
+    """Runs the study ``config`` (a ``lumis study`` TOML file) with its
+    runs as Ray tasks, each writing its image and record into ``out``
+    (default: ``<config stem>-report`` beside the config), then the study
+    once more here: it finds those runs finished, runs the external
+    settings' programs itself and writes the report ``lumis study``
+    writes. Runs finished before are not rendered again. ``out`` and the
+    config's scenes and references must be at the same paths on every
+    worker (a shared folder). Returns ``{finished, planned, interrupted,
+    report, tasks}``: ``tasks`` is each task's run (``id``, ``status``,
+    ``spp``, ``seconds``, ``relmse``)."""
+    config = os.path.abspath(os.fspath(config))
+    if out is None:
+        stem = os.path.splitext(os.path.basename(config))[0]
+        out = os.path.join(os.path.dirname(config), f"{stem}-report")
+    out = os.path.abspath(os.fspath(out))
+    runs = lumis._lumis.study_runs(config)
+    ray = _connect(address)
+    task = ray.remote(_study_run).options(
+        max_retries=max_retries, retry_exceptions=False, num_cpus=num_cpus
+    )
+    refs = [task.remote(config, out, rid) for rid, _args, external in runs if not external]
+    t0 = _time.monotonic()
+    line = _Line(len(refs)) if progress else None
+    pending = list(refs)
+    try:
+        while pending:
+            _, pending = ray.wait(pending, num_returns=len(pending), timeout=_POLL)
+            if line is not None:
+                done = len(refs) - len(pending)
+                line(done / max(1, len(refs)), done, _time.monotonic() - t0, done)
+        done_runs = ray.get(refs)
+    except BaseException:
+        for r in refs:
+            ray.cancel(r, force=True)
+        raise
+    finally:
+        if line is not None:
+            line.finish()
+    command = f"lumis.distributed.study({config!r})"
+    final = lumis._lumis.start_study(config, out, command=command, quiet=True)
+    try:
+        while not final.wait(lumis._POLL):
+            pass
+    except KeyboardInterrupt:
+        final.cancel()
+        final.wait()
+        raise
+    result = final.result()
+    result["tasks"] = done_runs
+    return result
