@@ -34,7 +34,7 @@ pub fn study_runs(py: Python<'_>, config: PathBuf) -> PyResult<Vec<(String, Vec<
 /// What a study task gives back.
 enum Done {
     Study(study::StudyOutcome),
-    One(String, OneRun),
+    One(String, Box<OneRun>),
 }
 
 /// Starts the study `config` writing to `out` (None: its default folder),
@@ -70,7 +70,7 @@ pub fn start_study(
         match run {
             None => study::run(&c, &a).map(Done::Study).map_err(err),
             Some(id) => study::run_one(&c, &a, &id)
-                .map(|r| Done::One(id, r))
+                .map(|r| Done::One(id, Box::new(r)))
                 .map_err(err),
         }
     })?;
@@ -117,7 +117,7 @@ impl StudyTask {
             }
             Some(Ok(Done::One(id, r))) => {
                 d.set_item("id", id)?;
-                let (status, rec) = match r {
+                let (status, rec) = match *r {
                     OneRun::Rendered(r) => ("rendered", Some(r)),
                     OneRun::Finished(r) => ("finished", Some(r)),
                     OneRun::Interrupted => ("interrupted", None),
