@@ -40,6 +40,7 @@ __all__ = [
     "Image",
     "Interrupted",
     "Job",
+    "Merger",
     "Scene",
     "SceneError",
     "SceneWarning",
@@ -453,4 +454,4 @@ class _StderrProgress:
 
 
 # Partial renders and their merge (they use the helpers above).
-from ._parts import merge, render_part  # noqa: E402
+from ._parts import Merger, merge, render_part  # noqa: E402

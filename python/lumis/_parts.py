@@ -73,19 +73,52 @@ def merge(parts: Sequence[PartLike], output: Any = None) -> Image:
     recorded it, made absolute), so it must be reachable here and
     unchanged. Parts of different renders (another scene, seed, sample
     count or setting), ranges that overlap or leave a gap, and an
-    unfinished part raise ``RuntimeError`` with the library's message."""
+    unfinished part raise ``RuntimeError`` with the library's message.
+    :class:`Merger` takes the parts one at a time instead."""
     if isinstance(parts, (bytes, bytearray, memoryview, str, os.PathLike)):
         raise TypeError("merge takes a list of parts (bytes or paths)")
-    items = []
+    m = Merger()
     for p in parts:
-        if isinstance(p, (bytearray, memoryview)):
-            p = bytes(p)
-        elif not isinstance(p, bytes):
-            p = os.fspath(p)
-        items.append(p)
-    outputs = None
-    if output is not None:
-        many = isinstance(output, (list, tuple))
-        outputs = [_path(o) for o in (output if many else [output])]
-    img, _ = _result(_lumis.merge(items, outputs))
-    return img
+        m.add(p)
+    return m.finish(output)
+
+
+class Merger:
+    """A merge of parts added one at a time, in any order (e.g. as the
+    machines rendering them finish): it keeps one film, the sum so far,
+    so its memory is one part's however many there are.
+
+        >>> m = lumis.Merger()
+        >>> for part in parts_as_they_come():
+        ...     m.add(part)
+        >>> img = m.finish("out.exr")
+
+    ``add`` refuses a part of another render than the first one's at once;
+    ``finish`` checks the ranges (no gap, no overlap, all finished) and
+    returns the :class:`lumis.Image`, as :func:`merge` does."""
+
+    def __init__(self) -> None:
+        self._m = _lumis.Merger()
+
+    def __len__(self) -> int:
+        """Parts added so far."""
+        return len(self._m)
+
+    def add(self, part: PartLike, name: Optional[str] = None) -> None:
+        """Adds a part: bytes, or the path of its file. ``name`` labels
+        it in errors (default ``part N``, or its path)."""
+        if isinstance(part, (bytearray, memoryview)):
+            part = bytes(part)
+        elif not isinstance(part, bytes):
+            part = os.fspath(part)
+        self._m.add(part, name)
+
+    def finish(self, output: Any = None) -> Image:
+        """The whole render's image (``output``: a path or a list of paths
+        to write it to too). A merger finishes once."""
+        outputs = None
+        if output is not None:
+            many = isinstance(output, (list, tuple))
+            outputs = [_path(o) for o in (output if many else [output])]
+        img, _ = _result(self._m.finish(outputs))
+        return img

@@ -154,8 +154,9 @@ def render(
     n = tasks or max(1, int(ray.cluster_resources().get("CPU", 1)))
     ranges = split(total, n, session.iteration_passes)
     del session
-    parts = _run_tasks(ray, j, ranges, progress, max_retries, num_cpus)
-    return lumis.merge(parts, output=output)
+    merger = lumis.Merger()
+    _run_tasks(ray, j, ranges, progress, max_retries, num_cpus, merger)
+    return merger.finish(output)
 
 
 def _run_tasks(
@@ -165,27 +166,31 @@ def _run_tasks(
     progress: Union[bool, Callable[[float, int, float], Any]],
     max_retries: int,
     num_cpus: float,
-) -> List[bytes]:
-    """The parts of ``ranges``, rendered as Ray tasks; progress reported."""
+    merger: "lumis.Merger",
+) -> None:
+    """Renders ``ranges`` as Ray tasks and adds each part to ``merger`` as
+    it arrives (then drops it: the caller holds one film, not every part);
+    reports progress."""
     total = ranges[-1][1]
     actor = ray.remote(num_cpus=0)(_Progress).remote(len(ranges))
     task = ray.remote(_render_range).options(
         max_retries=max_retries, retry_exceptions=False, num_cpus=num_cpus
     )
     text = job.to_json()
-    refs = [task.remote(text, a, b, i, actor) for i, (a, b) in enumerate(ranges)]
+    pending = [task.remote(text, a, b, i, actor) for i, (a, b) in enumerate(ranges)]
+    names = {r: f"passes {a}..{b}" for r, (a, b) in zip(pending, ranges)}
     report = _reporter(progress, len(ranges))
     t0 = _time.monotonic()
     try:
-        pending = list(refs)
         while pending:
-            _, pending = ray.wait(pending, num_returns=len(pending), timeout=_POLL)
+            ready, pending = ray.wait(pending, num_returns=1, timeout=_POLL)
+            for r in ready:
+                merger.add(ray.get(r), names.pop(r))
             if report is not None:
                 done = ray.get(actor.total.remote())
-                report(done / total, done, _time.monotonic() - t0, len(refs) - len(pending))
-        return ray.get(refs)
+                report(done / total, done, _time.monotonic() - t0, len(ranges) - len(pending))
     except BaseException:
-        for r in refs:
+        for r in pending:
             ray.cancel(r, force=True)
         raise
     finally:

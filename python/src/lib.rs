@@ -43,7 +43,7 @@ fn _lumis(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<session::Task>()?;
     m.add_function(wrap_pyfunction!(session::load, m)?)?;
     m.add_function(wrap_pyfunction!(params::parameters, m)?)?;
-    m.add_function(wrap_pyfunction!(parts::merge, m)?)?;
+    m.add_class::<parts::Merger>()?;
     m.add_class::<study::StudyTask>()?;
     m.add_function(wrap_pyfunction!(study::study_runs, m)?)?;
     m.add_function(wrap_pyfunction!(study::start_study, m)?)?;

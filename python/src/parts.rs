@@ -1,68 +1,113 @@
 //! Partial renders merged: the parts (`Checkpoint::encode` bytes, or
 //! their files) of one render combined into the whole render's image, bit
-//! for bit what one render of the whole job gives (`session::merge`).
+//! for bit what one render of the whole job gives (`session::Merger`),
+//! one part at a time, so a merge holds one film, not every part.
 
 use crate::errors::session_error;
 use crate::rendered::{rendered_tuple, stats, Rendered};
-use lumis_render::session::{merge as merge_parts, Part, SessionError};
+use lumis_render::session::{Merger as LibMerger, Part, SessionError};
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
 use std::path::PathBuf;
+use std::sync::{Mutex, PoisonError};
 
 /// A part as given: its bytes or its file.
-#[derive(FromPyObject)]
-pub enum PartArg {
+enum PartArg {
     Bytes(Vec<u8>),
     Path(PathBuf),
 }
 
-/// Merges `parts` (bytes or paths, in any order) into the whole render;
-/// `outputs`: images to write (None: none). Returns the tuple of
-/// `Task.result()`. The scene is loaded again from the parts' job, so its
-/// file must be reachable here; errors (parts of different renders, a gap
-/// or an overlap, an unfinished part) are the library's, as `RuntimeError`.
-#[pyfunction]
-#[pyo3(signature = (parts, outputs = None))]
-pub fn merge<'py>(
-    py: Python<'py>,
-    parts: Vec<Bound<'py, PyAny>>,
-    outputs: Option<Vec<PathBuf>>,
-) -> PyResult<Bound<'py, PyTuple>> {
-    let mut given = Vec::with_capacity(parts.len());
-    for (i, p) in parts.iter().enumerate() {
+impl PartArg {
+    fn from_py(p: &Bound<'_, PyAny>) -> PyResult<PartArg> {
         // Bytes are read as bytes, not as a sequence of integers.
-        let arg = match p.cast::<PyBytes>() {
-            Ok(b) => PartArg::Bytes(b.as_bytes().to_vec()),
-            Err(_) => p.extract::<PartArg>()?,
-        };
-        given.push((i, arg));
+        match p.cast::<PyBytes>() {
+            Ok(b) => Ok(PartArg::Bytes(b.as_bytes().to_vec())),
+            Err(_) => Ok(PartArg::Path(p.extract()?)),
+        }
     }
-    let r = py
-        .detach(move || merged(given, outputs))
-        .map_err(session_error)?;
-    rendered_tuple(py, r)
+
+    fn read(self, name: &str) -> Result<Part, SessionError> {
+        match self {
+            PartArg::Bytes(b) => Part::decode(&b, name),
+            PartArg::Path(f) => Part::read(&f),
+        }
+    }
 }
 
-fn merged(
-    given: Vec<(usize, PartArg)>,
-    outputs: Option<Vec<PathBuf>>,
-) -> Result<Rendered, SessionError> {
-    let parts = given
-        .into_iter()
-        .map(|(i, p)| match p {
-            PartArg::Bytes(b) => Part::decode(&b, &format!("part {}", i + 1)),
-            PartArg::Path(f) => Part::read(&f),
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+/// A merge of parts given one at a time (`add`), in any order, then
+/// `finish(outputs)`: the tuple of `Task.result()`. Errors (parts of
+/// different renders, a gap or an overlap, an unfinished part) are the
+/// library's, as `RuntimeError`.
+#[pyclass(module = "lumis._lumis", frozen)]
+pub struct Merger {
+    /// None once finished.
+    inner: Mutex<Option<LibMerger>>,
+}
+
+#[pymethods]
+impl Merger {
+    #[new]
+    fn new() -> Merger {
+        Merger {
+            inner: Mutex::new(Some(LibMerger::default())),
+        }
+    }
+
+    /// Parts added so far.
+    fn __len__(&self) -> usize {
+        self.lock().as_ref().map_or(0, LibMerger::len)
+    }
+
+    /// Adds a part (bytes, or a path to its file); `name` labels it in
+    /// errors (default: `part N`, or its path).
+    #[pyo3(signature = (part, name = None))]
+    fn add(&self, py: Python<'_>, part: &Bound<'_, PyAny>, name: Option<String>) -> PyResult<()> {
+        let arg = PartArg::from_py(part)?;
+        let mut guard = self.lock();
+        let m = guard
+            .as_mut()
+            .ok_or_else(|| PyRuntimeError::new_err("this merge is finished"))?;
+        let name = name.unwrap_or_else(|| format!("part {}", m.len() + 1));
+        py.detach(|| m.add(&arg.read(&name)?))
+            .map_err(session_error)
+    }
+
+    /// Loads the scene from the parts' job, checks the ranges and gives
+    /// the whole render's result; `outputs`: images to write (None: none).
+    #[pyo3(signature = (outputs = None))]
+    fn finish<'py>(
+        &self,
+        py: Python<'py>,
+        outputs: Option<Vec<PathBuf>>,
+    ) -> PyResult<Bound<'py, PyTuple>> {
+        let m = self
+            .lock()
+            .take()
+            .ok_or_else(|| PyRuntimeError::new_err("this merge is finished"))?;
+        let r = py
+            .detach(move || merged(m, outputs))
+            .map_err(session_error)?;
+        rendered_tuple(py, r)
+    }
+}
+
+impl Merger {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Option<LibMerger>> {
+        self.inner.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+fn merged(m: LibMerger, outputs: Option<Vec<PathBuf>>) -> Result<Rendered, SessionError> {
+    let parts = m.len();
     let outputs = outputs.map(|o| {
         o.iter()
             .map(|p| std::path::absolute(p).unwrap_or(p.clone()))
             .collect()
     });
-    let (session, out) = merge_parts(&parts, outputs)?;
+    let (session, out) = m.finish(outputs)?;
     let mut img = session.image(&out, None);
-    img.metadata
-        .push(("lumis:parts".into(), parts.len().to_string()));
+    img.metadata.push(("lumis:parts".into(), parts.to_string()));
     let (written, write_error) = match session.outputs.is_empty() {
         true => (Vec::new(), None),
         false => match session.write(&img) {

@@ -131,3 +131,27 @@ def test_job_passes_is_a_range_or_none():
     assert job.passes == (2, 6)
     job.passes = None
     assert job.passes is None
+
+
+def test_a_merger_takes_parts_one_at_a_time(tmp_path):
+    whole = lumis.render(spp=6, integrator="path", **SMALL)
+    a, b, c = parts_of = split_render(None, [(2, 3), (0, 2), (3, 6)], spp=6,
+                                      integrator="path", **SMALL)
+    m = lumis.Merger()
+    assert len(m) == 0
+    m.add(a)
+    m.add(memoryview(b))
+    (tmp_path / "c.lpart").write_bytes(c)
+    m.add(tmp_path / "c.lpart")
+    assert len(m) == 3
+    assert np.array_equal(m.finish(), whole)
+    with pytest.raises(RuntimeError, match="finished"):
+        m.add(a)
+    # A part of another render is refused when it is added, with its name.
+    m = lumis.Merger()
+    m.add(parts_of[0], name="first")
+    other = lumis.render_part(None, 0, 2, spp=6, seed=9, integrator="path", **SMALL)
+    with pytest.raises(RuntimeError, match="first and second are parts of different"):
+        m.add(other, name="second")
+    with pytest.raises(RuntimeError, match="nothing to merge"):
+        lumis.Merger().finish()

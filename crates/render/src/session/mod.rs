@@ -8,7 +8,7 @@ mod merge;
 mod output;
 
 pub use job::{Accel, Budget, CheckpointSpec, RenderJob};
-pub use merge::{merge, Part};
+pub use merge::{merge, Merger, Part};
 pub use output::{check_writable, default_outputs};
 
 use crate::checkpoint::{Checkpoint, Fnv};
