@@ -24,6 +24,7 @@ imported when first needed; install it with ``pip install ray``.
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 import time as _time
@@ -130,8 +131,11 @@ def render(
       passes_done, seconds)``;
     - ``output``: files to write the image to (at the caller);
     - ``max_retries``: reruns of a task whose worker dies;
-    - ``num_cpus``: CPUs Ray reserves per task (each task renders with
-      ``threads=`` of the job: by default all cores of its machine).
+    - ``num_cpus``: CPUs Ray reserves per task, and the threads each task
+      renders with unless the job sets ``threads`` (so a machine's tasks
+      use its cores once, not once each). Each task loads the scene: for a
+      large scene, give ``num_cpus`` the machines' core count, so that a
+      machine runs one task with all its cores and one copy of the scene.
 
     The scene path is made absolute: every worker must see the same files
     there. A time budget is refused (parts need a sample count)."""
@@ -144,6 +148,8 @@ def render(
         j.scene = j.scene_path()
     if j.time is not None:
         raise ValueError("a distributed render needs a sample count, not a time budget")
+    if j.threads == 0:
+        j.threads = max(1, math.ceil(num_cpus))
     # The pass count and iteration length, as the job's scene defines them.
     loading = lumis._lumis.load(j)
     while not loading.wait(lumis._POLL):
@@ -209,8 +215,9 @@ class _Line:
     """One line of progress on stderr: rewritten in place on a terminal,
     else printed every 5 s and at the end."""
 
-    def __init__(self, ntasks: int) -> None:
+    def __init__(self, ntasks: int, unit: str = "passes") -> None:
         self.ntasks = ntasks
+        self.unit = unit
         self.tty = getattr(sys.stderr, "isatty", lambda: False)()
         self.last: Optional[float] = None
         self.width = 0
@@ -221,7 +228,7 @@ class _Line:
         if self.last is not None and now - self.last < (0.1 if self.tty else 5.0) and not end:
             return
         line = (
-            f"lumis: {done}/{self.ntasks} tasks, {fraction * 100:5.1f}% of passes "
+            f"lumis: {done}/{self.ntasks} tasks, {fraction * 100:5.1f}% of {self.unit} "
             f"({passes}), {seconds:.1f} s"
         )
         if self.tty:
@@ -262,7 +269,10 @@ def study(
     settings' programs itself and writes the report ``lumis study``
     writes. Runs finished before are not rendered again. ``out`` and the
     config's scenes and references must be at the same paths on every
-    worker (a shared folder). Returns ``{finished, planned, interrupted,
+    worker (a shared folder). Runs with a time budget measure what a run
+    makes in its time: give ``num_cpus`` the machines' core count so that
+    runs do not share a machine (the config's ``threads`` is each run's
+    thread count). Returns ``{finished, planned, interrupted,
     report, tasks}``: ``tasks`` is each task's run (``id``, ``status``,
     ``spp``, ``seconds``, ``relmse``)."""
     config = os.path.abspath(os.fspath(config))
@@ -277,7 +287,7 @@ def study(
     )
     refs = [task.remote(config, out, rid) for rid, _args, external in runs if not external]
     t0 = _time.monotonic()
-    line = _Line(len(refs)) if progress else None
+    line = _Line(len(refs), "runs") if progress else None
     pending = list(refs)
     try:
         while pending:

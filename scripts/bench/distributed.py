@@ -126,7 +126,11 @@ def main() -> None:
         print(f"job: default scene {a.resolution} {a.integrator} {a.spp} spp; "
               f"lumis.render in this process: {t_one:.2f} s")
         for n in map(int, a.tasks.split(",")):
-            img, t_n = timed(dist.render, job, address, tasks=n, progress=False)
+            # Each task reserves (and renders with) its share of the CPUs:
+            # one task, all of them; more tasks than CPUs, one each.
+            per = max(1, int(cpus) // min(n, max(1, int(cpus))))
+            img, t_n = timed(dist.render, job, address, tasks=n, num_cpus=per,
+                             progress=False)
             same = "identical" if np.array_equal(img, ref) else "DIFFERENT"
             print(f"  distributed, {n} tasks: {t_n:.2f} s ({t_one / t_n:.2f}x), {same}")
     finally:
