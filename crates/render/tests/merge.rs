@@ -46,7 +46,10 @@ fn parts_in_any_order_merge_to_the_whole_film() {
     let (session, out) = m.finish(None).unwrap();
     assert_eq!(out.spp, 6);
     let got = session.scaled(&out.film);
-    assert!(got.iter().zip(&expected).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(got
+        .iter()
+        .zip(&expected)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
     // Another seed's film differs: the comparison can fail.
     let other = Session::without_outputs(job(2, None)).unwrap();
     assert_ne!(other.scaled(&render(&other).film), expected);
@@ -64,7 +67,7 @@ fn a_gap_and_another_render_are_refused() {
     let b = part(&Session::without_outputs(job(2, Some(2..4))).unwrap(), "b");
     let mut m = Merger::default();
     m.add(&a).unwrap();
-    let e = m.add(&b).err().expect("another seed").to_string();
+    let e = m.add(&b).expect_err("another seed").to_string();
     assert!(e.contains("a and b are parts of different renders"), "{e}");
 }
 
@@ -77,7 +80,10 @@ fn a_loaded_session_set_to_another_job_makes_that_jobs_parts() {
     assert_eq!(s.hash, fresh.hash);
     assert_eq!(s.settings.passes, Some(2..6));
     let (a, b) = (part(&s, "a"), part(&fresh, "b"));
-    assert_eq!(a.checkpoint.state.film.pixels, b.checkpoint.state.film.pixels);
+    assert_eq!(
+        a.checkpoint.state.film.pixels,
+        b.checkpoint.state.film.pixels
+    );
     // A range the render does not have is refused.
     assert!(s.set_job(job(3, Some(4..9))).is_err());
 }
