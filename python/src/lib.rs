@@ -46,6 +46,7 @@ fn _lumis(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<parts::Merger>()?;
     m.add_class::<study::StudyTask>()?;
     m.add_function(wrap_pyfunction!(study::study_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(study::job_from_flags, m)?)?;
     m.add_function(wrap_pyfunction!(study::start_study, m)?)?;
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;

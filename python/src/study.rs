@@ -5,11 +5,10 @@
 //! CLI's flags do (`flags.rs`).
 
 use crate::errors::session_error;
-use crate::flags::job_from_flags;
 use crate::thread::{spawn, wait_detached, Slot};
 use lumis_render::session::SessionError;
 use lumis_render::study::{self, Config, OneRun, StudyRun};
-use pyo3::exceptions::PyRuntimeError;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
@@ -29,6 +28,14 @@ pub fn study_runs(py: Python<'_>, config: PathBuf) -> PyResult<Vec<(String, Vec<
         .into_iter()
         .map(|r| (r.id, r.args, r.external))
         .collect())
+}
+
+/// The job that the `lumis render` arguments `args` describe (as a study
+/// run's flags become its job); `ValueError` for flags it does not know.
+#[pyfunction]
+pub fn job_from_flags(args: Vec<String>) -> PyResult<crate::job::Job> {
+    let job = crate::flags::job_from_flags(&args).map_err(PyValueError::new_err)?;
+    Ok(crate::job::Job { job })
 }
 
 /// What a study task gives back.
@@ -62,7 +69,7 @@ pub fn start_study(
         let a = StudyRun {
             out,
             command,
-            job_for: &job_from_flags,
+            job_for: &crate::flags::job_from_flags,
             cancel: &c2,
             log: &log,
         };
