@@ -139,6 +139,7 @@ def render(
 
     The scene path is made absolute: every worker must see the same files
     there. A time budget is refused (parts need a sample count)."""
+    ray = _connect(address)
     base = job.job if isinstance(job, Scene) else job
     if isinstance(base, Job):
         j = base.with_params(**params)
@@ -150,13 +151,10 @@ def render(
         raise ValueError("a distributed render needs a sample count, not a time budget")
     if j.threads == 0:
         j.threads = max(1, math.ceil(num_cpus))
-    # The pass count and iteration length, as the job's scene defines them.
-    loading = lumis._lumis.load(j)
-    while not loading.wait(lumis._POLL):
-        pass
-    session = loading.result()
+    # The pass count and iteration length, as the job's scene defines them
+    # (and the scene's warnings, issued here once).
+    session = lumis._load_session(j, stacklevel=3)
     total = session.pass_count
-    ray = _connect(address)
     n = tasks or max(1, int(ray.cluster_resources().get("CPU", 1)))
     ranges = split(total, n, session.iteration_passes)
     del session

@@ -76,6 +76,12 @@ def test_split_tiles_the_passes_on_iteration_boundaries():
         dist.split(0, 2)
 
 
+def test_without_ray_the_error_says_how_to_install_it(monkeypatch):
+    monkeypatch.setitem(sys.modules, "ray", None)  # `import ray` fails
+    with pytest.raises(ImportError, match="pip install ray"):
+        dist.render(lumis.Job(spp=1, resolution=(8, 8)), progress=False)
+
+
 @pytest.mark.parametrize(
     "params",
     [dict(integrator="path"), dict(integrator="photon", iteration_spp=2)],
