@@ -6,9 +6,9 @@
     >>> lumis.distributed.study("/shared/studies/caustics.toml", address="auto")
 
 :func:`render` cuts a job's passes into ranges, renders each range as a
-Ray task (:func:`lumis.render_part`) and merges the parts at the caller
-(:func:`lumis.merge`): the image is bit for bit the one :func:`lumis.render`
-gives on one machine. A task whose worker dies is run again (Ray's
+Ray task (:func:`lumis.render_part`) and merges the parts at the caller as
+they arrive (:class:`lumis.Merger`): the image is bit for bit the one
+:func:`lumis.render` gives on one machine. A task whose worker dies is run again (Ray's
 ``max_retries``); a part depends only on its range, so a rerun gives the
 same bytes. :func:`study` runs a study's runs as tasks into its shared
 folder, then the study once more at the caller, which finds them finished
@@ -26,12 +26,13 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 import time as _time
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import lumis
 from lumis import Image, Job, PathLike, Scene
+
+from ._progress import _Line, _Progress, _reporter
 
 __all__ = ["render", "split", "study"]
 
@@ -88,19 +89,6 @@ def _render_range(
             reporter.report.remote(index, max(0, spp - start))
 
     return lumis.render_part(job, start, end, progress=progress)
-
-
-class _Progress:
-    """A Ray actor the tasks report to: passes done per task."""
-
-    def __init__(self, n: int) -> None:
-        self.done = [0] * n
-
-    def report(self, index: int, passes: int) -> None:
-        self.done[index] = passes
-
-    def total(self) -> int:
-        return sum(self.done)
 
 
 def render(
@@ -201,46 +189,6 @@ def _run_tasks(
         if isinstance(report, _Line):
             report.finish()
         ray.kill(actor)
-
-
-def _reporter(progress: Any, ntasks: int) -> Optional[Callable[..., Any]]:
-    if callable(progress):
-        return lambda f, p, s, _done: progress(f, p, s)
-    return _Line(ntasks) if progress else None
-
-
-class _Line:
-    """One line of progress on stderr: rewritten in place on a terminal,
-    else printed every 5 s and at the end."""
-
-    def __init__(self, ntasks: int, unit: str = "passes") -> None:
-        self.ntasks = ntasks
-        self.unit = unit
-        self.tty = getattr(sys.stderr, "isatty", lambda: False)()
-        self.last: Optional[float] = None
-        self.width = 0
-
-    def __call__(self, fraction: float, passes: int, seconds: float, done: int) -> None:
-        now = _time.monotonic()
-        end = done == self.ntasks
-        if self.last is not None and now - self.last < (0.1 if self.tty else 5.0) and not end:
-            return
-        line = (
-            f"lumis: {done}/{self.ntasks} tasks, {fraction * 100:5.1f}% of {self.unit} "
-            f"({passes}), {seconds:.1f} s"
-        )
-        if self.tty:
-            sys.stderr.write("\r" + line.ljust(self.width))
-            self.width = len(line)
-        else:
-            sys.stderr.write(line + "\n")
-        self.last = now
-        sys.stderr.flush()
-
-    def finish(self) -> None:
-        if self.tty and self.width:
-            sys.stderr.write("\r" + " " * self.width + "\r")
-            sys.stderr.flush()
 
 
 def _study_run(config: str, out: str, run_id: str) -> Dict[str, Any]:
