@@ -113,6 +113,14 @@ class Merger:
             part = os.fspath(part)
         self._m.add(part, name)
 
+    def finish_part(self) -> bytes:
+        """The parts added, which must be finished and tile a range of
+        passes ``A..B`` without a gap or an overlap, as one part of
+        ``A..B``: a part like any other, so parts can be merged in a tree
+        (a few at a time where they were rendered, then those), to the
+        same bits. Loads the scene; the merger is finished then."""
+        return self._m.finish_part()
+
     def finish(self, output: Any = None) -> Image:
         """The whole render's image (``output``: a path or a list of paths
         to write it to too). A merger finishes once."""

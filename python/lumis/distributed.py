@@ -100,6 +100,7 @@ def render(
     output: Any = None,
     max_retries: int = 3,
     num_cpus: float = 1,
+    fan_in: Optional[int] = None,
     **params: Any,
 ) -> Image:
     """Renders ``job`` (a :class:`lumis.Job`, a :class:`lumis.Scene`'s job,
@@ -123,7 +124,12 @@ def render(
       renders with unless the job sets ``threads`` (so a machine's tasks
       use its cores once, not once each). Each task loads the scene: for a
       large scene, give ``num_cpus`` the machines' core count, so that a
-      machine runs one task with all its cores and one copy of the scene.
+      machine runs one task with all its cores and one copy of the scene;
+    - ``fan_in``: merge in a tree on the workers: Ray tasks merge the parts
+      of ``fan_in`` consecutive ranges into one part, then those, until at
+      most ``fan_in`` parts reach the caller (None: every part does). For
+      many large parts (docs/distributed.md): each merge task loads the
+      scene, and the caller receives and adds ``fan_in`` parts, not all.
 
     The scene path is made absolute: every worker must see the same files
     there. A time budget is refused (parts need a sample count)."""
@@ -146,9 +152,19 @@ def render(
     n = tasks or max(1, int(ray.cluster_resources().get("CPU", 1)))
     ranges = split(total, n, session.iteration_passes)
     del session
+    if fan_in is not None and fan_in < 2:
+        raise ValueError(f"fan_in must be at least 2, found {fan_in}")
     merger = lumis.Merger()
-    _run_tasks(ray, j, ranges, progress, max_retries, num_cpus, merger)
+    _run_tasks(ray, j, ranges, progress, (max_retries, num_cpus, fan_in), merger)
     return merger.finish(output)
+
+
+def _merge_parts(*parts: bytes) -> bytes:
+    """A Ray task: parts of consecutive ranges merged into one part."""
+    m = lumis.Merger()
+    for p in parts:
+        m.add(p)
+    return m.finish_part()
 
 
 def _run_tasks(
@@ -156,21 +172,30 @@ def _run_tasks(
     job: Job,
     ranges: Sequence[Tuple[int, int]],
     progress: Union[bool, Callable[[float, int, float], Any]],
-    max_retries: int,
-    num_cpus: float,
+    options: Tuple[int, float, Optional[int]],
     merger: "lumis.Merger",
 ) -> None:
-    """Renders ``ranges`` as Ray tasks and adds each part to ``merger`` as
-    it arrives (then drops it: the caller holds one film, not every part);
-    reports progress."""
+    """Renders ``ranges`` as Ray tasks (merged in a tree of ``fan_in``
+    when set) and adds each part that reaches the caller to ``merger`` as
+    it arrives, then drops it: the caller holds one film, not every part.
+    Reports progress."""
+    max_retries, num_cpus, fan_in = options
     total = ranges[-1][1]
     actor = ray.remote(num_cpus=0)(_Progress).remote(len(ranges))
-    task = ray.remote(_render_range).options(
-        max_retries=max_retries, retry_exceptions=False, num_cpus=num_cpus
-    )
+    opts = dict(max_retries=max_retries, retry_exceptions=False, num_cpus=num_cpus)
+    task = ray.remote(_render_range).options(**opts)
     text = job.to_json()
-    pending = [task.remote(text, a, b, i, actor) for i, (a, b) in enumerate(ranges)]
-    names = {r: f"passes {a}..{b}" for r, (a, b) in zip(pending, ranges)}
+    rendering = [task.remote(text, a, b, i, actor) for i, (a, b) in enumerate(ranges)]
+    # Each part that will reach the caller, with its range.
+    level = [(r, a, b) for r, (a, b) in zip(rendering, ranges)]
+    if fan_in is not None:
+        merge = ray.remote(_merge_parts).options(**opts)
+        while len(level) > fan_in:
+            groups = [level[k : k + fan_in] for k in range(0, len(level), fan_in)]
+            level = [(merge.remote(*(r for r, _, _ in g)), g[0][1], g[-1][2]) for g in groups]
+    names = {r: f"passes {a}..{b}" for r, a, b in level}
+    pending = [r for r, _, _ in level]
+    del level
     report = _reporter(progress, len(ranges))
     t0 = _time.monotonic()
     try:
@@ -178,11 +203,17 @@ def _run_tasks(
             ready, pending = ray.wait(pending, num_returns=1, timeout=_POLL)
             for r in ready:
                 merger.add(ray.get(r), names.pop(r))
+            # The renders still running (a finished one is dropped here, so
+            # its part is freed once merged).
+            if rendering:
+                _, rendering = ray.wait(
+                    rendering, num_returns=len(rendering), timeout=0, fetch_local=False
+                )
             if report is not None:
                 done = ray.get(actor.total.remote())
-                report(done / total, done, _time.monotonic() - t0, len(ranges) - len(pending))
+                report(done / total, done, _time.monotonic() - t0, len(ranges) - len(rendering))
     except BaseException:
-        for r in pending:
+        for r in pending + rendering:
             ray.cancel(r, force=True)
         raise
     finally:

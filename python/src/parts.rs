@@ -90,6 +90,19 @@ impl Merger {
             .map_err(session_error)?;
         rendered_tuple(py, r)
     }
+
+    /// The parts, finished and tiling a range `A..B`, as one part of
+    /// `A..B` (bytes), for merging in a tree; loads the scene.
+    fn finish_part<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        let m = self
+            .lock()
+            .take()
+            .ok_or_else(|| PyRuntimeError::new_err("this merge is finished"))?;
+        let bytes = py
+            .detach(move || m.finish_part().map(|p| p.checkpoint.encode()))
+            .map_err(session_error)?;
+        Ok(PyBytes::new(py, &bytes))
+    }
 }
 
 impl Merger {

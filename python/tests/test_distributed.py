@@ -100,6 +100,17 @@ def test_a_distributed_render_equals_one_render(cluster, params):
                               whole)
 
 
+def test_parts_merged_in_a_tree_on_the_workers_give_the_same_image(cluster):
+    job = lumis.Job(resolution=(64, 48), spp=10, seed=2, integrator="path")
+    whole = lumis.render(job, progress=False)
+    # 5 parts, merged 2 at a time into 3, then 2: what reaches the caller.
+    img = dist.render(job, cluster, tasks=5, fan_in=2, progress=False)
+    assert np.array_equal(img, whole)
+    assert img.metadata["lumis:parts"] == "2"
+    with pytest.raises(ValueError, match="fan_in"):
+        dist.render(job, cluster, fan_in=1, progress=False)
+
+
 def workers_running(name: str):
     """Pids of the processes whose title says they run task `name` (Ray
     names a busy worker process `ray::<function>`)."""

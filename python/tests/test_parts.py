@@ -155,3 +155,20 @@ def test_a_merger_takes_parts_one_at_a_time(tmp_path):
         m.add(other, name="second")
     with pytest.raises(RuntimeError, match="nothing to merge"):
         lumis.Merger().finish()
+
+
+def test_parts_merged_into_a_part_merge_like_any_part():
+    whole = lumis.render(spp=6, integrator="path", **SMALL)
+    a, b, c = split_render(None, [(0, 1), (1, 4), (4, 6)], spp=6, integrator="path", **SMALL)
+    m = lumis.Merger()
+    m.add(b)
+    m.add(a)
+    left = m.finish_part()
+    assert isinstance(left, bytes)
+    assert np.array_equal(lumis.merge([c, left]), whole)
+    # Not a range: a gap between them.
+    m = lumis.Merger()
+    m.add(a)
+    m.add(c)
+    with pytest.raises(RuntimeError, match=r"passes 1\.\.4 are missing"):
+        m.finish_part()

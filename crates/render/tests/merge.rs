@@ -87,3 +87,35 @@ fn a_loaded_session_set_to_another_job_makes_that_jobs_parts() {
     // A range the render does not have is refused.
     assert!(s.set_job(job(3, Some(4..9))).is_err());
 }
+
+#[test]
+fn parts_merged_into_a_part_merge_like_any_part() {
+    let whole = Session::without_outputs(job(1, None)).unwrap();
+    let expected = whole.scaled(&render(&whole).film);
+    let part_of = |r: std::ops::Range<u32>| {
+        let s = Session::without_outputs(job(1, Some(r.clone()))).unwrap();
+        part(&s, &format!("{r:?}"))
+    };
+    // 1..3 and 0..1 into 0..3, then with 3..6.
+    let mut m = Merger::default();
+    m.add(&part_of(1..3)).unwrap();
+    m.add(&part_of(0..1)).unwrap();
+    let left = m.finish_part().unwrap();
+    assert_eq!(left.job.passes, Some(0..3));
+    let left = Part::decode(&left.checkpoint.encode(), "left").unwrap();
+    let mut m = Merger::default();
+    m.add(&part_of(3..6)).unwrap();
+    m.add(&left).unwrap();
+    let (session, out) = m.finish(None).unwrap();
+    let got = session.scaled(&out.film);
+    assert!(got
+        .iter()
+        .zip(&expected)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    // A gap inside the range is refused.
+    let mut m = Merger::default();
+    m.add(&part_of(0..1)).unwrap();
+    m.add(&part_of(2..4)).unwrap();
+    let e = m.finish_part().expect_err("a gap").to_string();
+    assert!(e.contains("passes 1..2 are missing"), "{e}");
+}

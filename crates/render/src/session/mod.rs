@@ -5,10 +5,12 @@
 
 mod job;
 mod merge;
+mod merger;
 mod output;
 
 pub use job::{Accel, Budget, CheckpointSpec, RenderJob};
-pub use merge::{merge, Merger, Part};
+pub use merge::{merge, Part};
+pub use merger::Merger;
 pub use output::{check_writable, default_outputs};
 
 use crate::checkpoint::{Checkpoint, Fnv};
