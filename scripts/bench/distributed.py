@@ -14,7 +14,8 @@ measures, on the built-in default scene:
   drops out);
 - the merge of parts at the caller (HD, 4 parts): seconds and MB/s;
 - wall times of one job rendered by `lumis.render` in this process and
-  by `lumis.distributed.render` with 1, 2, 4 and 8 tasks.
+  by `lumis.distributed.render` with 1, 2, 4 and 8 tasks, and with 8
+  tasks merged in a tree (`fan_in=2`).
 """
 
 from __future__ import annotations
@@ -133,6 +134,12 @@ def main() -> None:
                              progress=False)
             same = "identical" if np.array_equal(img, ref) else "DIFFERENT"
             print(f"  distributed, {n} tasks: {t_n:.2f} s ({t_one / t_n:.2f}x), {same}")
+        n = max(map(int, a.tasks.split(",")))
+        img, t_n = timed(dist.render, job, address, tasks=n, num_cpus=1, fan_in=2,
+                         progress=False)
+        same = "identical" if np.array_equal(img, ref) else "DIFFERENT"
+        print(f"  distributed, {n} tasks, merged in a tree on the workers (fan_in=2): "
+              f"{t_n:.2f} s ({t_one / t_n:.2f}x), {same}")
     finally:
         if ray.is_initialized():
             ray.shutdown()
