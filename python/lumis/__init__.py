@@ -21,6 +21,10 @@ Ctrl-C stops it after the current pass and raises :class:`Interrupted` (a
 :func:`last_render`. Scene errors raise :class:`SceneError` (a
 ``ValueError``) with ``file``, ``line`` and ``column``; scene warnings are
 issued as :class:`SceneWarning` through :mod:`warnings`.
+
+A render's passes (one sample per pixel each) can be rendered in ranges
+anywhere, :func:`render_part`, and merged exactly, :func:`merge` and
+:class:`Merger`; :mod:`lumis.distributed` does so on a Ray cluster.
 """
 
 from __future__ import annotations
