@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Python package's tests: a virtual environment under target/ with
-# pinned maturin, numpy and pytest; the CLI and the `lumis` wheel built
+# pinned maturin, numpy, pytest and ray (for lumis.distributed's tests on
+# a local Ray cluster); the CLI and the `lumis` wheel built
 # from the library as `cargo test --workspace` compiles it (after that,
 # only PyO3 and the native module are compiled), the wheel installed in
 # the environment; then pytest.
@@ -16,13 +17,14 @@ py=${PYTHON:-python3}
 MATURIN=1.16.0
 NUMPY=2.4.6
 PYTEST=9.2.0
+RAY=2.60.0
 
-stamp="$venv/.pins-$MATURIN-$NUMPY-$PYTEST"
+stamp="$venv/.pins-$MATURIN-$NUMPY-$PYTEST-$RAY"
 if [ ! -f "$stamp" ]; then
     rm -rf "$venv"
     "$py" -m venv "$venv"
     "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-        "maturin==$MATURIN" "numpy==$NUMPY" "pytest==$PYTEST"
+        "maturin==$MATURIN" "numpy==$NUMPY" "pytest==$PYTEST" "ray==$RAY"
     touch "$stamp"
 fi
 

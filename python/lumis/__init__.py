@@ -21,6 +21,10 @@ Ctrl-C stops it after the current pass and raises :class:`Interrupted` (a
 :func:`last_render`. Scene errors raise :class:`SceneError` (a
 ``ValueError``) with ``file``, ``line`` and ``column``; scene warnings are
 issued as :class:`SceneWarning` through :mod:`warnings`.
+
+A render's passes (one sample per pixel each) can be rendered in ranges
+anywhere, :func:`render_part`, and merged exactly, :func:`merge` and
+:class:`Merger`; :mod:`lumis.distributed` does so on a Ray cluster.
 """
 
 from __future__ import annotations
@@ -40,15 +44,18 @@ __all__ = [
     "Image",
     "Interrupted",
     "Job",
+    "Merger",
     "Scene",
     "SceneError",
     "SceneWarning",
     "compare",
     "last_render",
     "load",
+    "merge",
     "parameters",
     "read",
     "render",
+    "render_part",
     "write",
 ]
 
@@ -240,18 +247,27 @@ def render(
     :class:`SceneError`.
     """
     given = dict(params, spp=spp, time=time, seed=seed, threads=threads)
+    job, session = _prepare(scene, given, stacklevel=4)
+    return _run(session, job, progress)[0]
+
+
+def _prepare(
+    scene: Union[Scene, Job, PathLike, None], given: Dict[str, Any], stacklevel: int
+) -> Tuple[Job, "_lumis.Session"]:
+    """The job ``scene`` and ``given`` make, and a session loaded for it
+    (a Scene's own when it can render the job)."""
     if isinstance(scene, Scene):
         job = scene._session.job.with_params(**given)
         session = scene._session
         if not session.can_render(job):
-            session = _load_session(job, stacklevel=3)
+            session = _load_session(job, stacklevel=stacklevel)
     elif isinstance(scene, Job):
         job = scene.with_params(**given)
-        session = _load_session(job, stacklevel=3)
+        session = _load_session(job, stacklevel=stacklevel)
     else:
         job = Job(_path(scene), **given)
-        session = _load_session(job, stacklevel=3)
-    return _run(session, job, progress)
+        session = _load_session(job, stacklevel=stacklevel)
+    return job, session
 
 
 def read(path: PathLike) -> Image:
@@ -351,7 +367,10 @@ def _load_session(job: Job, stacklevel: int) -> "_lumis.Session":
     return session
 
 
-def _run(session: "_lumis.Session", job: Job, progress: Union[bool, ProgressCallback]) -> Image:
+def _run(
+    session: "_lumis.Session", job: Job, progress: Union[bool, ProgressCallback]
+) -> Tuple[Image, Optional[bytes]]:
+    """The render's image and, for a partial render, its part."""
     global _last
     report = _reporter(progress)
     task = session.start(job)
@@ -369,7 +388,7 @@ def _run(session: "_lumis.Session", job: Job, progress: Union[bool, ProgressCall
         task.cancel()
         while not task.wait(_POLL):
             pass
-        _last = _result(task)
+        _last = _result(task.result())[0]
         raise Interrupted(_last) from None
     except BaseException:
         task.cancel()
@@ -377,19 +396,21 @@ def _run(session: "_lumis.Session", job: Job, progress: Union[bool, ProgressCall
     finally:
         if isinstance(report, _StderrProgress):
             report.finish()
-    _last = _result(task)
-    return _last
+    _last, part = _result(task.result())
+    return _last, part
 
 
-def _result(task: "_lumis.Task") -> Image:
-    pixels, w, h, metadata, stats, written, write_error = task.result()
+def _result(result: tuple) -> Tuple[Image, Optional[bytes]]:
+    """A render's or a merge's image (``OSError`` if its outputs could not
+    be written), and a partial render's part."""
+    pixels, w, h, metadata, stats, written, write_error, part = result
     stats["written"] = [os.fspath(p) for p in written]
     img = Image(_array(pixels, w, h), metadata, stats)
     if write_error is not None:
         global _last
         _last = img
         raise OSError(write_error)
-    return img
+    return img, part
 
 
 def _reporter(progress: Union[bool, ProgressCallback]) -> Optional[ProgressCallback]:
@@ -434,3 +455,7 @@ class _StderrProgress:
         if self.tty and self.width > 0:
             sys.stderr.write("\r" + " " * self.width + "\r")
             sys.stderr.flush()
+
+
+# Partial renders and their merge (they use the helpers above).
+from ._parts import Merger, merge, render_part  # noqa: E402

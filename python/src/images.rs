@@ -3,7 +3,7 @@
 //! the boundary as native float32 bytes, RGB, row-major, top row first.
 
 use crate::errors::image_error;
-use crate::session::{bytes_to_floats, floats_to_bytearray};
+use crate::rendered::{bytes_to_floats, floats_to_bytearray};
 use lumis_render::image_io::{read_image as read, write_image as write, RgbImage};
 use lumis_render::load::options::crop_bounds;
 use lumis_render::metrics::{compare_where, heatmap::write_heatmap, lit_interior, PixelError};

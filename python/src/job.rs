@@ -226,6 +226,21 @@ impl Job {
         self.job.exposure = v;
     }
 
+    /// A partial render: passes `(start, end)` of the render the rest of
+    /// the job describes (one sample per pixel each), or None for all.
+    #[getter]
+    fn passes(&self) -> Option<(u32, u32)> {
+        self.job.passes.as_ref().map(|r| (r.start, r.end))
+    }
+    #[setter]
+    fn set_passes(&mut self, v: Option<(u32, u32)>) -> PyResult<()> {
+        let mut j = self.clone();
+        j.job.passes = v.map(|(a, b)| a..b);
+        j.check()?;
+        *self = j;
+        Ok(())
+    }
+
     /// The folder relative paths resolve against.
     #[getter]
     fn dir(&self) -> PathBuf {

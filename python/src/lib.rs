@@ -11,14 +11,24 @@
 //! - `session`: a loaded scene ([`session::Session`]) and renders running
 //!   on a Rust thread ([`session::Task`]) that Python polls, so Ctrl-C
 //!   reaches Python while the GIL is released;
+//! - `parts`: merging partial renders (parts) into the whole image;
+//! - `rendered`: a render's result as Python values;
+//! - `study`: studies (`lumis study`), whole or one run at a time, with
+//!   run flags made into jobs by `flags`;
+//! - `thread`: work on a Rust thread, waited for without the GIL;
 //! - `images`: reading, writing and comparing images;
 //! - `errors`: library errors as Python exceptions.
 
 mod errors;
+mod flags;
 mod images;
 mod job;
 mod params;
+mod parts;
+mod rendered;
 mod session;
+mod study;
+mod thread;
 
 use pyo3::prelude::*;
 
@@ -33,6 +43,11 @@ fn _lumis(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<session::Task>()?;
     m.add_function(wrap_pyfunction!(session::load, m)?)?;
     m.add_function(wrap_pyfunction!(params::parameters, m)?)?;
+    m.add_class::<parts::Merger>()?;
+    m.add_class::<study::StudyTask>()?;
+    m.add_function(wrap_pyfunction!(study::study_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(study::job_from_flags, m)?)?;
+    m.add_function(wrap_pyfunction!(study::start_study, m)?)?;
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::compare, m)?)?;

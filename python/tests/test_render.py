@@ -116,8 +116,10 @@ def test_scene_file_names_of_parameters_are_accepted():
 # parameters, and those that only make sense on a command line.
 JOB_KEYWORDS = {"spp", "time", "threads", "seed", "integrator", "maxdepth", "resolution",
                 "crop", "exposure", "sampler", "clamp", "accel", "output"}
+# `--passes A..B --partial FILE` is `lumis.render_part(scene, A, B)`,
+# which returns the part's bytes.
 CLI_ONLY = {"help", "quiet", "verbose", "stats", "checkpoint", "checkpoint_every",
-            "resume", "display_server"}
+            "resume", "display_server", "passes", "partial"}
 
 
 def test_the_keywords_are_the_clis_flags(cli):

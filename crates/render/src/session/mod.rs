@@ -5,10 +5,12 @@
 
 mod job;
 mod merge;
+mod merger;
 mod output;
 
 pub use job::{Accel, Budget, CheckpointSpec, RenderJob};
 pub use merge::{merge, Part};
+pub use merger::Merger;
 pub use output::{check_writable, default_outputs};
 
 use crate::checkpoint::{Checkpoint, Fnv};
@@ -129,6 +131,21 @@ impl Session {
             hash,
             phases,
         })
+    }
+
+    /// Points this loaded session at `job`, which builds the same scene
+    /// (only its seed, budget, threads, clamp, pass range or outputs
+    /// differ): its settings and scene hash follow from it as
+    /// [`Session::new`] makes them (so its checkpoints and parts are the
+    /// job's). Outputs are the caller's to set.
+    pub fn set_job(&mut self, job: RenderJob) -> Result<(), SessionError> {
+        job.check()?;
+        let settings = run_settings(&job, &self.loaded.options);
+        settings.check_passes()?;
+        self.hash = scene_hash(&self.loaded, &settings);
+        self.settings = settings;
+        self.job = job;
+        Ok(())
     }
 
     /// Renders with the job's integrator; `hooks.resume` continues a

@@ -16,11 +16,13 @@ mod report;
 mod runs;
 mod scene_copy;
 mod setting;
+mod single;
 pub mod store;
 mod summary;
 
 pub use config::Config;
 pub use error::{Result, StudyError};
+pub use single::{plan, run_one, OneRun, PlannedRun};
 
 use crate::image_io::{read_image, write_image, RgbImage};
 use crate::metrics::compare;
@@ -131,6 +133,31 @@ pub fn default_out(config: &Path) -> PathBuf {
         .join(format!("{stem}-report"))
 }
 
+/// A scene's reference, read and checked, and what the report shows of it
+/// (`write_png`: its tone-mapped PNG written in the scene's folder).
+fn reference(
+    s: &config::SceneCfg,
+    out: &Path,
+    write_png: bool,
+) -> Result<(RgbImage, report::SceneInfo)> {
+    let r = read_image(&s.reference)
+        .with_context(|| format!("scene `{}`: reading its reference", s.name))?;
+    compare(&r, &r, None).with_context(|| format!("scene `{}`: reference", s.name))?;
+    let exposure = s.exposure.unwrap_or_else(|| auto_exposure(&r));
+    std::fs::create_dir_all(out.join(&s.name))?;
+    let png = out.join(&s.name).join("reference.png");
+    if write_png {
+        write_image(&png, &r, exposure)?;
+    }
+    let info = report::SceneInfo {
+        reference_png: rel(out, &png),
+        reference_spp: r.meta("lumis:spp").map(str::to_string),
+        reference_command: r.meta("lumis:command").map(str::to_string),
+        exposure,
+    };
+    Ok((r, info))
+}
+
 /// Runs every unfinished run of `c` and writes the report.
 pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
     let out = a.out.clone();
@@ -139,20 +166,9 @@ pub fn run(c: &Config, a: &StudyRun) -> Result<StudyOutcome> {
     let mut refs = Vec::new();
     let mut infos = Vec::new();
     for s in &c.scenes {
-        let r = read_image(&s.reference)
-            .with_context(|| format!("scene `{}`: reading its reference", s.name))?;
-        compare(&r, &r, None).with_context(|| format!("scene `{}`: reference", s.name))?;
-        let exposure = s.exposure.unwrap_or_else(|| auto_exposure(&r));
-        std::fs::create_dir_all(out.join(&s.name))?;
-        let png = out.join(&s.name).join("reference.png");
-        write_image(&png, &r, exposure)?;
-        infos.push(report::SceneInfo {
-            reference_png: rel(&out, &png),
-            reference_spp: r.meta("lumis:spp").map(str::to_string),
-            reference_command: r.meta("lumis:command").map(str::to_string),
-            exposure,
-        });
+        let (r, info) = reference(s, &out, true)?;
         refs.push(r);
+        infos.push(info);
     }
     let ctx_start = (loadavg(), utc_now());
     let mut ext = external::Externals::new(c, &out, a.log, a.cancel);
