@@ -4,6 +4,9 @@
 //! format, give the film and image of the whole render bit for bit, for
 //! every integrator. Parts that do not make one render are refused.
 
+// A split into one range is one of the splits tested, not a mistaken `Vec`.
+#![allow(clippy::single_range_in_vec_init)]
+
 use lumis_render::film::Film;
 use lumis_render::integrator::{RenderHooks, RenderOutcome};
 use lumis_render::session::{merge, Part, RenderJob, Session};
