@@ -102,7 +102,11 @@ fn temp_path(path: &Path) -> PathBuf {
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
         .unwrap_or_default();
-    path.with_file_name(format!(".{name}.tmp{}", std::process::id()))
+    // Unique per process and per write: two threads writing one name each
+    // rename a whole file of their own (the last one wins).
+    static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let k = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    path.with_file_name(format!(".{name}.tmp{}-{k}", std::process::id()))
 }
 
 /// Writes by extension; `exposure` (stops) applies to PNG only.
