@@ -41,16 +41,18 @@ def test_uneven_parts_in_any_order_merge_to_the_whole_render(params):
                                                        **SMALL, **params)), whole)
 
 
-def test_a_part_holds_the_film_sums_and_a_header():
+def test_a_part_holds_the_film_sums_packed():
     def size(w, h):
         return len(lumis.render_part(None, 0, 2, spp=4, integrator="path",
                                      resolution=(w, h), progress=False))
 
-    small, large = size(16, 8), size(32, 8)
-    # 104 bytes a pixel (a count and six 128-bit sums: docs/distributed.md),
-    # plus a header (the job, the state) that does not grow with the image.
-    assert (large - small) == 104 * 16 * 8
-    assert 0 < small - 104 * 16 * 8 < 4096
+    small, large = size(16, 16), size(128, 128)
+    # A pixel's count and six 128-bit sums take 104 bytes; a part packs them
+    # (docs/distributed.md) to well under half, plus a header (the job, the
+    # state) that does not grow with the image.
+    grown = large - small
+    assert 0 < grown < 104 * (128 * 128 - 16 * 16) / 2
+    assert small < 104 * 16 * 16 + 4096
 
 
 def test_parts_of_a_loaded_scene_and_of_a_job(scenes):
