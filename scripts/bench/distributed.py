@@ -10,8 +10,7 @@ measures, on the built-in default scene:
 
 - a Ray round trip of an empty task, and of a tiny part (one pass at 8x8:
   Ray plus lumis loading the scene), serially: the per-task overhead;
-- the bytes of a part, and bytes per pixel (two sizes, so the header
-  drops out);
+- the bytes per pixel of a part (320x240, of 1 and of 64 passes);
 - the merge of parts at the caller (HD, 4 parts): seconds and MB/s;
 - wall times of one job rendered by `lumis.render` in this process and
   by `lumis.distributed.render` with 1, 2, 4 and 8 tasks, and with 8
@@ -76,14 +75,15 @@ def overhead(ray, repeat: int) -> tuple:
     return t_empty, t_tiny, t_local
 
 
-def part_bytes() -> tuple:
-    def size(w, h):
-        return len(lumis.render_part(None, 0, 1, spp=1, integrator="path",
+def part_bytes(w: int = 320, h: int = 240) -> list:
+    """Bytes per pixel of parts of 1 and of 64 passes (the film's sums are
+    packed, so a part's size depends on what it holds; its header is a
+    few hundred bytes plus the job)."""
+    def size(passes):
+        return len(lumis.render_part(None, 0, passes, spp=64, integrator="path",
                                      resolution=(w, h), progress=False))
 
-    small, large = size(64, 64), size(128, 64)
-    per_pixel = (large - small) / (64 * 64)
-    return per_pixel, small - per_pixel * 64 * 64
+    return [(p, size(p) / (w * h)) for p in (1, 64)]
 
 
 def merge_speed(n: int = 4, res=(1920, 1080)) -> tuple:
@@ -116,12 +116,13 @@ def main() -> None:
         print(f"per-task overhead: empty Ray task {e * 1e3:.1f} ms round trip; "
               f"a 1-pass 8x8 part {t * 1e3:.1f} ms as a task, {loc * 1e3:.1f} ms in process "
               f"(so Ray adds {(t - loc) * 1e3:.1f} ms)")
-        per_px, header = part_bytes()
-        print(f"part size: {per_px:g} bytes/pixel + {header:.0f} bytes of header")
+        sizes = ", ".join(f"{p} passes {b:.1f}" for p, b in part_bytes())
+        print(f"part size, bytes/pixel (320x240 path, header included): {sizes}")
         size, t_merge, t_load = merge_speed()
+        t_add = max(t_merge - t_load, 1e-9)
         print(f"merge of 4 HD parts ({size / 1e6:.1f} MB): {t_merge:.3f} s, of which loading "
-              f"the scene {t_load:.3f} s; {size / 1e6 / max(t_merge - t_load, 1e-9):.0f} MB/s "
-              "adding sums")
+              f"the scene {t_load:.3f} s; {size / 1e6 / t_add:.0f} MB/s of parts, "
+              f"{4 * 1920 * 1080 / 1e6 / t_add:.2f} M part pixels/s (unpacking, adding sums)")
         job = lumis.Job(resolution=a.resolution, spp=a.spp, integrator=a.integrator)
         ref, t_one = timed(lumis.render, job, progress=False)
         print(f"job: default scene {a.resolution} {a.integrator} {a.spp} spp; "
