@@ -4,7 +4,7 @@
 //! one part at a time, so a merge holds one film, not every part.
 
 use crate::errors::session_error;
-use crate::rendered::{rendered_tuple, stats, Rendered};
+use crate::rendered::{rendered_tuple, Rendered};
 use lumis_render::session::{Merger as LibMerger, Part, SessionError};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -121,21 +121,5 @@ fn merged(m: LibMerger, outputs: Option<Vec<PathBuf>>) -> Result<Rendered, Sessi
     let (session, out) = m.finish(outputs)?;
     let mut img = session.image(&out, None);
     img.metadata.push(("lumis:parts".into(), parts.to_string()));
-    let (written, write_error) = match session.outputs.is_empty() {
-        true => (Vec::new(), None),
-        false => match session.write(&img) {
-            Ok(w) => (w, None),
-            Err(e) => (Vec::new(), Some(e.to_string())),
-        },
-    };
-    Ok(Rendered {
-        width: img.width,
-        height: img.height,
-        stats: stats(&out, session.loaded.options.integrator.name()),
-        data: img.data,
-        metadata: img.metadata,
-        written,
-        write_error,
-        part: None,
-    })
+    Ok(Rendered::from_session(&session, &out, img, None))
 }

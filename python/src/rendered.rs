@@ -21,6 +21,35 @@ pub struct Rendered {
     pub part: Option<Vec<u8>>,
 }
 
+impl Rendered {
+    /// `img` of `out`, written to the session's outputs if it has any (a
+    /// failed write is reported with the image, which stays returned).
+    pub fn from_session(
+        s: &lumis_render::session::Session,
+        out: &RenderOutcome,
+        img: lumis_render::image_io::RgbImage,
+        part: Option<Vec<u8>>,
+    ) -> Rendered {
+        let (written, write_error) = match s.outputs.is_empty() {
+            true => (Vec::new(), None),
+            false => match s.write(&img) {
+                Ok(w) => (w, None),
+                Err(e) => (Vec::new(), Some(e.to_string())),
+            },
+        };
+        Rendered {
+            width: img.width,
+            height: img.height,
+            stats: stats(out, s.loaded.options.integrator.name()),
+            data: img.data,
+            metadata: img.metadata,
+            written,
+            write_error,
+            part,
+        }
+    }
+}
+
 /// The render's figures, for `Image.stats`.
 pub struct Stats {
     spp: u32,
@@ -33,7 +62,7 @@ pub struct Stats {
     photons: Option<PhotonStats>,
 }
 
-pub fn stats(out: &RenderOutcome, integrator: &str) -> Stats {
+fn stats(out: &RenderOutcome, integrator: &str) -> Stats {
     Stats {
         spp: out.spp,
         seconds: out.elapsed.as_secs_f64(),

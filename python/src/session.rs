@@ -8,7 +8,7 @@
 
 use crate::errors::session_error;
 use crate::job::Job;
-use crate::rendered::{rendered_tuple, stats, Rendered};
+use crate::rendered::{rendered_tuple, Rendered};
 use crate::thread::{spawn, wait_detached, Slot};
 use lumis_render::integrator::{Progress, RenderHooks};
 use lumis_render::session::{check_writable, RenderJob, Session as LibSession, SessionError};
@@ -222,23 +222,7 @@ fn run(
     });
     let part = s.job.passes.is_some().then(|| s.part(&out).encode());
     let img = s.image(&out, None);
-    let (written, write_error) = match s.outputs.is_empty() {
-        true => (Vec::new(), None),
-        false => match s.write(&img) {
-            Ok(w) => (w, None),
-            Err(e) => (Vec::new(), Some(e.to_string())),
-        },
-    };
-    Ok(Rendered {
-        width: img.width,
-        height: img.height,
-        stats: stats(&out, s.loaded.options.integrator.name()),
-        data: img.data,
-        metadata: img.metadata,
-        written,
-        write_error,
-        part,
-    })
+    Ok(Rendered::from_session(s, &out, img, part))
 }
 
 /// A render running on a thread of its own: `wait()` in slices, read
