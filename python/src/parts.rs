@@ -5,7 +5,7 @@
 
 use crate::errors::session_error;
 use crate::rendered::{rendered_tuple, Rendered};
-use lumis_render::session::{Merger as LibMerger, Part, SessionError};
+use lumis_render::session::{merged_image, Merger as LibMerger, Part, SessionError};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyTuple};
@@ -113,13 +113,7 @@ impl Merger {
 
 fn merged(m: LibMerger, outputs: Option<Vec<PathBuf>>) -> Result<Rendered, SessionError> {
     let parts = m.len();
-    let outputs = outputs.map(|o| {
-        o.iter()
-            .map(|p| std::path::absolute(p).unwrap_or(p.clone()))
-            .collect()
-    });
     let (session, out) = m.finish(outputs)?;
-    let mut img = session.image(&out, None);
-    img.metadata.push(("lumis:parts".into(), parts.to_string()));
+    let img = merged_image(&session, &out, parts, None);
     Ok(Rendered::from_session(&session, &out, img, None))
 }

@@ -191,22 +191,17 @@ fn render_cmd(a: RenderArgs) -> Result<ExitCode> {
 
 /// `lumis merge`: the parts' sums added, written as the whole render's image.
 fn merge_cmd(a: crate::args::MergeArgs) -> Result<ExitCode> {
-    use lumis_render::session::{merge, Part};
+    use lumis_render::session::{merge, merged_image, Part};
     let t = Instant::now();
     let parts = a
         .parts
         .iter()
         .map(|p| Part::read(p))
         .collect::<Result<Vec<_>, _>>()?;
-    let outputs = a
-        .output
-        .iter()
-        .map(|o| std::path::absolute(o).unwrap_or(o.clone()));
-    let (session, out) = merge(&parts, Some(outputs.collect()))?;
+    // Relative outputs resolve against this folder (the merged job's).
+    let (session, out) = merge(&parts, Some(a.output.into_iter().collect()))?;
     let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let mut img = session.image(&out, Some(&command));
-    img.metadata
-        .push(("lumis:parts".into(), parts.len().to_string()));
+    let img = merged_image(&session, &out, parts.len(), Some(&command));
     let files = session.write(&img)?;
     let names: Vec<String> = files.iter().map(|f| shown(f, &session.job.dir)).collect();
     eprintln!(

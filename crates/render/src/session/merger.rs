@@ -172,6 +172,19 @@ impl Merger {
     }
 }
 
+/// The image of a merge of `parts` parts (the session's image, recording
+/// the number of parts).
+pub fn merged_image(
+    session: &Session,
+    out: &RenderOutcome,
+    parts: usize,
+    command: Option<&str>,
+) -> crate::image_io::RgbImage {
+    let mut img = session.image(out, command);
+    img.metadata.push(("lumis:parts".into(), parts.to_string()));
+    img
+}
+
 /// The parts' sum and what it is of.
 struct Sum {
     job: RenderJob,

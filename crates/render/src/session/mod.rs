@@ -10,7 +10,7 @@ mod output;
 
 pub use job::{Accel, Budget, CheckpointSpec, RenderJob};
 pub use merge::{merge, Part};
-pub use merger::Merger;
+pub use merger::{merged_image, Merger};
 pub use output::{check_writable, default_outputs};
 
 use crate::checkpoint::{Checkpoint, Fnv};
@@ -120,9 +120,7 @@ impl Session {
         for o in &outputs {
             check_writable(o)?;
         }
-        let settings = run_settings(&job, &loaded.options);
-        settings.check_passes()?;
-        let hash = scene_hash(&loaded, &settings);
+        let (settings, hash) = settings_and_hash(&job, &loaded)?;
         Ok(Session {
             job,
             loaded,
@@ -140,10 +138,7 @@ impl Session {
     /// job's). Outputs are the caller's to set.
     pub fn set_job(&mut self, job: RenderJob) -> Result<(), SessionError> {
         job.check()?;
-        let settings = run_settings(&job, &self.loaded.options);
-        settings.check_passes()?;
-        self.hash = scene_hash(&self.loaded, &settings);
-        self.settings = settings;
+        (self.settings, self.hash) = settings_and_hash(&job, &self.loaded)?;
         self.job = job;
         Ok(())
     }
@@ -306,6 +301,17 @@ pub fn run_settings(job: &RenderJob, o: &crate::load::RenderOptions) -> RenderSe
         passes: job.passes.clone(),
         ..o.render_settings(spp, job.seed, job.threads)
     }
+}
+
+/// `job`'s checked render settings on `l` and the hash of both.
+fn settings_and_hash(
+    job: &RenderJob,
+    l: &LoadedScene,
+) -> Result<(RenderSettings, u64), SessionError> {
+    let settings = run_settings(job, &l.options);
+    settings.check_passes()?;
+    let hash = scene_hash(l, &settings);
+    Ok((settings, hash))
 }
 
 /// The job a checkpoint file continues, and the checkpoint.
