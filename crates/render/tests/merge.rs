@@ -2,9 +2,10 @@
 //! whole render's film bit for bit; a loaded session pointed at another
 //! job (`Session::set_job`) makes that job's parts.
 
-use lumis_render::integrator::{RenderHooks, RenderOutcome};
+mod common;
+
+use common::render_session;
 use lumis_render::session::{Budget, Merger, Part, RenderJob, Session};
-use std::sync::atomic::AtomicBool;
 
 fn job(seed: u64, passes: Option<std::ops::Range<u32>>) -> RenderJob {
     let mut job = RenderJob::new(None);
@@ -18,25 +19,15 @@ fn job(seed: u64, passes: Option<std::ops::Range<u32>>) -> RenderJob {
     job
 }
 
-fn render(s: &Session) -> RenderOutcome {
-    let never = AtomicBool::new(false);
-    s.render(RenderHooks {
-        progress: &|_| {},
-        cancel: &never,
-        after_pass: None,
-        resume: None,
-    })
-}
-
 /// The part `s` renders, through its bytes.
 fn part(s: &Session, name: &str) -> Part {
-    Part::decode(&s.part(&render(s)).encode(), name).unwrap()
+    Part::decode(&s.part(&render_session(s, None)).encode(), name).unwrap()
 }
 
 #[test]
 fn parts_in_any_order_merge_to_the_whole_film() {
     let whole = Session::without_outputs(job(1, None)).unwrap();
-    let expected = whole.scaled(&render(&whole).film);
+    let expected = whole.scaled(&render_session(&whole, None).film);
     let mut m = Merger::default();
     for r in [3..6, 0..1, 1..3] {
         let s = Session::without_outputs(job(1, Some(r.clone()))).unwrap();
@@ -52,7 +43,7 @@ fn parts_in_any_order_merge_to_the_whole_film() {
         .all(|(a, b)| a.to_bits() == b.to_bits()));
     // Another seed's film differs: the comparison can fail.
     let other = Session::without_outputs(job(2, None)).unwrap();
-    assert_ne!(other.scaled(&render(&other).film), expected);
+    assert_ne!(other.scaled(&render_session(&other, None).film), expected);
 }
 
 #[test]
@@ -91,7 +82,7 @@ fn a_loaded_session_set_to_another_job_makes_that_jobs_parts() {
 #[test]
 fn parts_merged_into_a_part_merge_like_any_part() {
     let whole = Session::without_outputs(job(1, None)).unwrap();
-    let expected = whole.scaled(&render(&whole).film);
+    let expected = whole.scaled(&render_session(&whole, None).film);
     let part_of = |r: std::ops::Range<u32>| {
         let s = Session::without_outputs(job(1, Some(r.clone()))).unwrap();
         part(&s, &format!("{r:?}"))

@@ -8,10 +8,11 @@
 #![allow(clippy::single_range_in_vec_init)]
 
 use lumis_render::film::Film;
-use lumis_render::integrator::{RenderHooks, RenderOutcome};
+mod common;
+
+use lumis_render::integrator::RenderOutcome;
 use lumis_render::session::{merge, Part, RenderJob, Session};
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The default scene, small, with `integrator` and its parameters.
 fn job(integrator: &str, spp: u32, params: &[(&str, &str)]) -> RenderJob {
@@ -30,20 +31,7 @@ fn job(integrator: &str, spp: u32, params: &[(&str, &str)]) -> RenderJob {
 /// Renders `job`, stopping after `stop` passes if given.
 fn render(job: RenderJob, stop: Option<u32>) -> (Session, RenderOutcome) {
     let s = Session::without_outputs(job).expect("the job loads");
-    let cancel = AtomicBool::new(false);
-    let mut passes = 0;
-    let mut after = |_: &lumis_render::integrator::RenderState| {
-        passes += 1;
-        if Some(passes) == stop {
-            cancel.store(true, Ordering::Relaxed);
-        }
-    };
-    let out = s.render(RenderHooks {
-        progress: &|_| {},
-        cancel: &cancel,
-        after_pass: Some(&mut after),
-        resume: None,
-    });
+    let out = common::render_session(&s, stop);
     (s, out)
 }
 

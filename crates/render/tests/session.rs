@@ -2,9 +2,10 @@
 //! before rendering, and an image saved elsewhere (and said where) when its
 //! output folder vanished during the render.
 
-use lumis_render::integrator::RenderHooks;
+mod common;
+
+use common::render_session;
 use lumis_render::session::{Budget, RenderJob, Session};
-use std::sync::atomic::AtomicBool;
 
 fn tiny_job(dir: &std::path::Path) -> RenderJob {
     let mut job = RenderJob::new(None);
@@ -17,16 +18,6 @@ fn tiny_job(dir: &std::path::Path) -> RenderJob {
     job
 }
 
-fn render(s: &Session) -> lumis_render::integrator::RenderOutcome {
-    let never = AtomicBool::new(false);
-    s.render(RenderHooks {
-        progress: &|_| {},
-        cancel: &never,
-        after_pass: None,
-        resume: None,
-    })
-}
-
 #[test]
 fn a_job_renders_and_records_how_it_was_made() {
     let dir = std::env::temp_dir().join(format!("lumis-session-{}-a", std::process::id()));
@@ -35,7 +26,7 @@ fn a_job_renders_and_records_how_it_was_made() {
     job.outputs = vec!["t.pfm".into()];
     let s = Session::new(RenderJob::from_json(&job.to_json()).unwrap()).unwrap();
     assert_eq!(s.outputs, vec![dir.join("t.pfm")]);
-    let out = render(&s);
+    let out = render_session(&s, None);
     assert_eq!(out.spp, 2);
     let img = s.image(&out, None);
     assert_eq!(img.meta("lumis:integrator"), Some("path"));
@@ -58,7 +49,7 @@ fn outputs_are_checked_first_and_rescued_when_their_folder_vanishes() {
     assert!(e.contains("does not exist"), "{e}");
     job.outputs = vec!["gone/x.exr".into()];
     let s = Session::new(job).unwrap();
-    let out = render(&s);
+    let out = render_session(&s, None);
     std::fs::remove_dir(&gone).unwrap();
     let e = s.write(&s.image(&out, None)).unwrap_err().to_string();
     let rescue = dir.join("x.exr");

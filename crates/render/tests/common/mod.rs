@@ -188,6 +188,28 @@ pub fn render_until(
     )
 }
 
+/// Renders a library session's job, stopping (as SIGINT would) after
+/// `stop_after` passes if given.
+pub fn render_session(
+    s: &lumis_render::session::Session,
+    stop_after: Option<u32>,
+) -> RenderOutcome {
+    let cancel = AtomicBool::new(false);
+    let mut passes = 0;
+    let mut after = |_: &RenderState| {
+        passes += 1;
+        if Some(passes) == stop_after {
+            cancel.store(true, Ordering::Relaxed);
+        }
+    };
+    s.render(RenderHooks {
+        progress: &|_| {},
+        cancel: &cancel,
+        after_pass: Some(&mut after),
+        resume: None,
+    })
+}
+
 /// Whether two films hold the same per-pixel statistics, bit for bit.
 pub fn same_bits(a: &Film, b: &Film) -> bool {
     a.pixels == b.pixels && a.splats == b.splats
