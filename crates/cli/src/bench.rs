@@ -118,7 +118,7 @@ pub fn run(a: BenchArgs) -> Result<()> {
         .map_err(|d| anyhow::anyhow!("{d}"))?;
     let ps = l.options.integrator.photon().expect("photon");
     let never = std::sync::atomic::AtomicBool::new(false);
-    let maps = PhotonMaps::build(&l.scene, ps, 0, &never).expect("not cancelled");
+    let maps = PhotonMaps::build(&l.scene, ps, 0, None, &never).expect("not cancelled");
     let emitted = (ps.global_photons + ps.caustic_photons) as f64;
     let st = &maps.stats;
     outln!(

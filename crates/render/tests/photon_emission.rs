@@ -17,7 +17,7 @@ const N: u64 = 200_000;
 fn first_hit_flux(world: &str) -> f64 {
     let text = format!("Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n{world}\n");
     let l = load(&text, &Default::default());
-    let t = trace_photons(&l.scene, N, MapKind::Global, 5, 0, None, &NEVER).unwrap();
+    let t = trace_photons(&l.scene, N, MapKind::Global, 5, 0, None, None, &NEVER).unwrap();
     t.photons.iter().map(|p| p.power().luminance() as f64).sum()
 }
 
@@ -292,7 +292,7 @@ fn aimed_caustic_photons_from_a_textured_light() {
     let sums: Vec<(f64, f64, usize)> = [None, Some(&targets)]
         .into_iter()
         .map(|t| {
-            let tr = trace_photons(&l.scene, n, MapKind::Caustic, 7, 5, t, &NEVER).unwrap();
+            let tr = trace_photons(&l.scene, n, MapKind::Caustic, 7, 5, t, None, &NEVER).unwrap();
             let p: Vec<f64> = tr
                 .photons
                 .iter()

@@ -193,6 +193,9 @@ pub struct Start {
     pub seed: u64,
     /// The area, in pixels, a pixel's samples spread over (the filter's).
     pub pixel_spread: f32,
+    /// The filter's radius in pixels: how far outside the film a point
+    /// connected to the camera may still land.
+    pub filter_radius: Vec2,
     /// The pixels rendered, and the render's wall-clock budget.
     pub crop: PixelBounds,
     pub time_limit: Option<Duration>,
@@ -243,25 +246,32 @@ impl SampleCx<'_> {
     /// filter's density there: the same pixel estimate as the filter's
     /// importance-sampled camera samples.
     pub fn splat_at(&mut self, p: Vec2, l: Rgb) {
-        let r = self.filter.radius;
-        let (x0, x1) = ((p.x - 0.5 - r.x).ceil(), (p.x - 0.5 + r.x).floor());
-        let (y0, y1) = ((p.y - 0.5 - r.y).ceil(), (p.y - 0.5 + r.y).floor());
-        let mut y = y0.max(0.0);
-        while y <= y1 {
-            let mut x = x0.max(0.0);
-            while x <= x1 {
-                let w = self.filter.pdf(p - Vec2::new(x + 0.5, y + 0.5));
-                if w > 0.0 {
-                    self.splats.push(Splat {
-                        x: x as u32,
-                        y: y as u32,
-                        l: l * w,
-                    });
-                }
-                x += 1.0;
+        filter_splats(self.filter, p, l, self.splats);
+    }
+}
+
+/// `l` arriving at raster position `p` (full film, pixels, y down) as
+/// splats into every pixel whose filter reaches it, weighted by the
+/// filter's density there.
+pub fn filter_splats(filter: &Filter, p: Vec2, l: Rgb, out: &mut Vec<Splat>) {
+    let r = filter.radius;
+    let (x0, x1) = ((p.x - 0.5 - r.x).ceil(), (p.x - 0.5 + r.x).floor());
+    let (y0, y1) = ((p.y - 0.5 - r.y).ceil(), (p.y - 0.5 + r.y).floor());
+    let mut y = y0.max(0.0);
+    while y <= y1 {
+        let mut x = x0.max(0.0);
+        while x <= x1 {
+            let w = filter.pdf(p - Vec2::new(x + 0.5, y + 0.5));
+            if w > 0.0 {
+                out.push(Splat {
+                    x: x as u32,
+                    y: y as u32,
+                    l: l * w,
+                });
             }
-            y += 1.0;
+            x += 1.0;
         }
+        y += 1.0;
     }
 }
 
@@ -271,6 +281,13 @@ pub trait Pass: Sync {
     fn before_pass(&mut self, cancel: &AtomicBool) -> bool;
     /// Radiance arriving along a camera ray, for the sample's own pixel.
     fn li(&self, ray: Ray, sampler: &mut Sampler, cx: &mut SampleCx) -> Rgb;
+    /// Contributions made outside the camera samples (e.g. photons
+    /// connected to the camera when they were traced): raster position and
+    /// radiance, each an estimate for one sample per pixel, added to the
+    /// splats once per sample of every pass.
+    fn pass_splats(&self) -> &[(Vec2, Rgb)] {
+        &[]
+    }
     /// The time the render's next step would take after the pass `report`
     /// tells of, which took `pass_time`: the driver stops under a time
     /// budget when it would not fit. The default, one more pass; `None`:
@@ -325,6 +342,7 @@ pub fn render_with(
             spp: settings.spp,
             seed: settings.seed,
             pixel_spread: settings.filter.sample_spread(),
+            filter_radius: settings.filter.radius,
             crop: settings.crop,
             time_limit: settings.time_limit,
             sampler: settings.sampler,
@@ -538,6 +556,19 @@ fn render_pass<P: Pass>(
             }
         }
     }
+    let own = pass.pass_splats();
+    if !own.is_empty() {
+        let n = indices.len() as f32;
+        let mut splats = Vec::new();
+        for &(p, l) in own {
+            filter_splats(&settings.filter, p, l * n, &mut splats);
+        }
+        for s in splats {
+            if let Some(l) = accept(s.l, settings.clamp) {
+                film.add_splat(s.x, s.y, l);
+            }
+        }
+    }
     tally
 }
 
@@ -568,6 +599,9 @@ impl<P: Pass> Pass for InjectNan<'_, P> {
             l.r = f32::NAN;
         }
         l
+    }
+    fn pass_splats(&self) -> &[(Vec2, Rgb)] {
+        self.0.pass_splats()
     }
     fn next_cost(&self, report: &PassReport, pass_time: Duration) -> Option<Duration> {
         self.0.next_cost(report, pass_time)

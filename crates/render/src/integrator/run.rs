@@ -9,7 +9,7 @@ use super::vcm::VcmRun;
 use super::{bdpt, direct, lighttracer, path, Integrator};
 use crate::geometry::Ray;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler};
+use lumis_math::{Rgb, Sampler, Vec2};
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
@@ -140,6 +140,13 @@ impl Pass for Run<'_> {
                 scale,
             } => bdpt::li(scene, ray, sampler, settings, *scale, cx),
             Run::Vcm(v) => v.li(ray, sampler, cx),
+        }
+    }
+
+    fn pass_splats(&self) -> &[(Vec2, Rgb)] {
+        match self {
+            Run::Photon(p) => p.pass_splats(),
+            _ => &[],
         }
     }
 

@@ -91,6 +91,7 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.kernel = choice(e, "kernel", "none", "kernel", kernel)?;
     s.radiance_photons = p.get_bool("radiancephotons", s.radiance_photons)?;
     s.aim_caustics = p.get_bool("aimcaustics", s.aim_caustics)?;
+    s.connect_caustics = p.get_bool("connectcaustics", s.connect_caustics)?;
     if s.progressive.is_some() {
         s.progressive = Some(progressive(e)?);
     }

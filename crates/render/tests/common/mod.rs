@@ -105,28 +105,37 @@ pub fn sample_mean_and_se(vals: &[f64]) -> (f64, f64) {
 /// Mean over all pixels and channels, and its standard error estimated from
 /// the spread of per-pixel means (pixels are independent estimates).
 pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
-    let vals: Vec<f64> = film
-        .pixels
-        .iter()
-        .map(|p| match channel {
-            Some(c) => p.mean()[c],
-            None => p.mean().iter().sum::<f64>() / 3.0,
+    let vals: Vec<f64> = image_means(film)
+        .into_iter()
+        .map(|m| match channel {
+            Some(c) => m[c],
+            None => m.iter().sum::<f64>() / 3.0,
         })
         .collect();
     sample_mean_and_se(&vals)
 }
 
+/// Each pixel's estimate: its samples' mean plus its splats (light paths
+/// connected to the camera) over the samples per pixel.
+pub fn image_means(film: &Film) -> Vec<[f64; 3]> {
+    film.mean_image()
+        .chunks_exact(3)
+        .map(|c| [c[0] as f64, c[1] as f64, c[2] as f64])
+        .collect()
+}
+
 /// Mean over the film's pixels (of `channel`, or of the channel average)
 /// and the variance of that mean from the pixels' own variances of their
-/// means: the square of its standard error.
+/// means: the square of its standard error. Splats count in the mean but
+/// not in the variance (the film keeps no spread of them).
 pub fn region_mean_and_var(film: &Film, channel: Option<usize>) -> (f64, f64) {
     let n = film.pixels.len() as f64;
     let (mut sum, mut var) = (0.0, 0.0);
-    for p in &film.pixels {
+    for (p, mean) in film.pixels.iter().zip(image_means(film)) {
         let v = p.variance_of_mean();
         let (m, v) = match channel {
-            Some(c) => (p.mean()[c], v[c] as f64),
-            None => (p.mean().iter().sum::<f64>() / 3.0, v.average() as f64),
+            Some(c) => (mean[c], v[c] as f64),
+            None => (mean.iter().sum::<f64>() / 3.0, v.average() as f64),
         };
         sum += m;
         var += v;

@@ -91,7 +91,7 @@ pub fn choose_counts(
         probe.global_photons = (s.global_photons as f64 * f).ceil() as u64;
         probe.caustic_photons = (s.caustic_photons as f64 * f).ceil() as u64;
         let t = Instant::now();
-        let maps = PhotonMaps::build(scene, &probe, probe_seed, cancel)?;
+        let maps = PhotonMaps::build(scene, &probe, probe_seed, None, cancel)?;
         Some((t.elapsed().as_secs_f64(), maps))
     };
     let mut f = 1.0 / 256.0;
@@ -154,6 +154,7 @@ fn camera_probe(
         s,
         alpha_first: 1.0,
         pixel_spread: 1.0,
+        connect: None,
     };
     let mut d = PROBE_PIXELS;
     loop {

@@ -178,7 +178,7 @@ fn fresnel_lobes(bsdf: &SurfaceBsdf, wo: Vec3, ns: Vec3) -> Option<[(Rgb, Vec3);
 /// `alpha` of `q_1` at a shading point (seed, A.10): from the samples per
 /// pixel at the camera path's first non-delta hit (and, in `footprint` mode,
 /// the area there that the pixel's samples spread over), 1 elsewhere.
-fn alpha_at(
+pub(super) fn alpha_at(
     mode: AlphaMode,
     alpha_first: f32,
     first_camera_hit: bool,

@@ -6,6 +6,7 @@
 //! their first non-delta hit; along glossy surfaces the same rules recurse).
 
 use super::aim::emitted_flux;
+use super::connect;
 use super::volume;
 use super::weights::{q1, q2, w1, w2, Alpha};
 use super::{Kernel, PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE};
@@ -28,6 +29,10 @@ pub struct PhotonCtx<'a> {
     pub alpha_first: f32,
     /// The area, in pixels, a pixel's samples spread over (the filter's).
     pub pixel_spread: f32,
+    /// The caustic photons are connected to the camera, whose film they
+    /// may reach within this margin (pixels): caustics at a camera ray's
+    /// first hit are weighed over three techniques (`connect.rs`).
+    pub connect: Option<Vec2>,
 }
 
 thread_local! {
@@ -101,7 +106,13 @@ pub fn shade(
     } else {
         sample_direct_n(scene, x, bsdf, wo, m2 as f32, sampler, rays)
     };
-    let (lc, delta_a, alpha) = caustic_photons(ctx, x, bsdf, wo, alpha, m2);
+    // Seen directly with the caustic photons connected to the camera: the
+    // caustics here are weighed over three techniques (`connect.rs`).
+    let inv_j = match ctx.connect {
+        Some(margin) if depth == 0 => connect::inv_density(scene, x.geom.p, x.geom.ng, margin),
+        _ => 0.0,
+    };
+    let (lc, delta_a, alpha) = caustic_photons(ctx, x, bsdf, wo, (alpha, inv_j), m2);
     l += lc;
     if m2 == 0 {
         return l;
@@ -137,6 +148,7 @@ pub fn shade(
             q1_measure: delta_a,
             alpha,
             m2,
+            inv_j,
         };
         gathered += weight * trace_gather(ctx, &g, depth, sampler, rays);
     }
@@ -159,6 +171,9 @@ pub(super) struct Gather {
     pub q1_measure: f32,
     pub alpha: f32,
     pub m2: u32,
+    /// `1 / J` at the shading point where the caustic photons are
+    /// connected to the camera (a third caustic technique), else 0.
+    pub inv_j: f32,
 }
 
 /// Radiance arriving at the shading point along a gather ray, with the MIS
@@ -313,6 +328,10 @@ fn caustic_gather_weight(ctx: &PhotonCtx, g: &Gather, le: f32, flux: impl Fn() -
     };
     let q_1 = q1(n, le, g.q1_cos, g.q1_measure, phi, g.alpha);
     let q_2 = q2(g.m2, g.pdf);
+    if g.inv_j > 0.0 {
+        let q3 = |m: f32, s: f32| q1(n, le, g.q1_cos, m, phi, s);
+        return connect::weights(ctx, (q_1, q_2), (g.q1_measure, g.alpha), g.inv_j, q3)[1];
+    }
     w2(q_1, q_2, ctx.s.caustics, ctx.s.heuristic)
 }
 
@@ -324,7 +343,7 @@ fn caustic_photons(
     x: &Hit,
     bsdf: &SurfaceBsdf,
     wo: Vec3,
-    alpha: Alpha,
+    (alpha, inv_j): (Alpha, f32),
     m2: u32,
 ) -> (Rgb, f32, f32) {
     let map = &ctx.maps.caustic;
@@ -342,7 +361,6 @@ fn caustic_photons(
         if found.is_empty() || r2 <= 0.0 {
             return (Rgb::BLACK, delta_a, alpha);
         }
-        let n = map.emitted() as f64;
         let r = r2.sqrt();
         let skip = skip_boundary
             .then(|| boundary_photon(&found, s.nearest, r2))
@@ -359,20 +377,15 @@ fn caustic_photons(
                 continue;
             }
             // Aimed photons carry their own flux: Phi / N becomes the photon's power.
-            let q_1 = if ctx.maps.targets.is_some() {
-                q1(
-                    1.0,
-                    ph.le(),
-                    wj.dot(x.geom.ns),
-                    delta_a,
-                    ph.power().luminance(),
-                    alpha,
-                )
-            } else {
-                q1(n, ph.le(), wj.dot(x.geom.ns), delta_a, ctx.maps.phi, alpha)
-            };
+            let (le, cos, power) = (ph.le(), wj.dot(x.geom.ns), ph.power().luminance());
+            let q_1 = connect::photon_q(ctx, le, cos, delta_a, power, alpha);
             let q_2 = q2(m2, bsdf.pdf(wo, wj, TransportMode::Radiance));
-            let w = w1(q_1, q_2, s.caustics, s.heuristic);
+            let w = if inv_j > 0.0 {
+                let q3 = |m: f32, s: f32| connect::photon_q(ctx, le, cos, m, power, s);
+                connect::weights(ctx, (q_1, q_2), (delta_a, alpha), inv_j, q3)[0]
+            } else {
+                w1(q_1, q_2, s.caustics, s.heuristic)
+            };
             if w == 0.0 {
                 continue;
             }

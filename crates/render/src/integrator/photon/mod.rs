@@ -11,6 +11,7 @@
 pub mod aim;
 pub mod budget;
 pub mod camera;
+pub mod connect;
 pub mod gather;
 pub mod map;
 pub mod pass;
@@ -64,6 +65,12 @@ pub struct PhotonSettings {
     /// Emit caustic photons only towards perfectly specular shapes
     /// (see `aim.rs`); their fluxes then differ and q_1 uses each photon's own.
     pub aim_caustics: bool,
+    /// Caustics seen directly by the camera (`L S+ D E`) also from the
+    /// caustic photons connected to the camera as they are stored (the
+    /// light tracer's strategy), a third technique beside the caustic map
+    /// and the gather rays (`connect.rs`). Progressive mode with the seed's
+    /// weights only; off in scenes with media.
+    pub connect_caustics: bool,
     /// Render in iterations, each with fresh maps and shrinking radii (the
     /// default; `None`: one pair of maps for the whole render, the
     /// single-map baseline).
@@ -87,6 +94,7 @@ impl Default for PhotonSettings {
             caustic_photons: PROG_CAUSTIC,
             gather_rays: PROG_GATHER_RAYS,
             specular_splits: PROG_SPECULAR_SPLITS,
+            connect_caustics: true,
             progressive: Some(Progressive::default()),
             ..PhotonSettings::single_map()
         }
@@ -111,6 +119,7 @@ impl PhotonSettings {
             kernel: Kernel::None,
             radiance_photons: true,
             aim_caustics: false,
+            connect_caustics: false,
             progressive: None,
         }
     }
@@ -147,6 +156,7 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("string", "kernel", "kernel", "none|cone", "caustic density-estimation kernel"),
     spec("bool", "radiancephotons", "radiance-photons", "true|false", "read the global map through precomputed radiance photons"),
     spec("bool", "aimcaustics", "aim-caustics", "true|false", "emit caustic photons only towards perfectly specular shapes"),
+    spec("bool", "connectcaustics", "connect-caustics", "true|false", "progressive: caustics the camera sees directly are also estimated by connecting each caustic photon to the camera (the light tracer's strategy), weighed with the caustic map and the gather rays by the balance heuristic over the three"),
     spec("bool", "progressive", "progressive", "true|false", "render in iterations (the default), each tracing fresh photons (`photons` and `causticphotons` per iteration) with radii that shrink from one to the next; `false`: one photon map for the whole render"),
     spec("integer", "iterationspp", "iteration-spp", "S", "progressive: samples per pixel rendered with each iteration's maps"),
     spec("float", "shrink", "shrink", "A", "progressive: radius sequence r_{i+1}^2 = r_i^2 (i + A) / (i + 1), 0 < A <= 1"),

@@ -2,12 +2,13 @@
 //! caustic map, their kd-trees, and the radiance photons over the global
 //! map; with the query radii of a progressive iteration, if any.
 
+use super::connect::Connection;
 use super::map::PhotonMap;
 use super::radiance::{self, RadiancePhotons};
 use super::radius_field::RadiusField;
 use super::{aim, trace, PhotonSettings};
 use crate::scene::Scene;
-use lumis_math::Vec3;
+use lumis_math::{Rgb, Vec2, Vec3};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -80,6 +81,11 @@ pub struct PhotonMaps {
     /// The fixed radii of the caustic and global estimates (progressive
     /// iterations); `None`: the `nearest` photons within a largest radius.
     pub radii: Option<Radii>,
+    /// The caustic photons connected to the camera (`connect_caustics`),
+    /// and, once weighed, their raster positions and radiance: one estimate
+    /// of the caustics seen directly per sample per pixel.
+    pub connections: Vec<Connection>,
+    pub splats: Vec<(Vec2, Rgb)>,
     pub stats: PhotonStats,
 }
 
@@ -123,13 +129,16 @@ impl PhotonMaps {
     /// Traces and builds the maps, radiance photons from the `nearest`
     /// photons; gives up (`None`) soon after `cancel` is set, so an
     /// interrupt during a long photon pass ends the render at once.
+    /// `connect`: caustic photons are connected to the camera, whose film
+    /// they may reach within that margin (pixels); weighed by the run.
     pub fn build(
         scene: &Scene,
         s: &PhotonSettings,
         seed: u64,
+        connect: Option<(Vec2, u32)>,
         cancel: &AtomicBool,
     ) -> Option<PhotonMaps> {
-        let (mut maps, normals) = Self::trace(scene, s, seed, cancel)?;
+        let (mut maps, normals) = Self::trace(scene, s, seed, connect, cancel)?;
         maps.finish(s, &normals, None);
         Some(maps)
     }
@@ -141,6 +150,7 @@ impl PhotonMaps {
         scene: &Scene,
         s: &PhotonSettings,
         seed: u64,
+        connect: Option<(Vec2, u32)>,
         cancel: &AtomicBool,
     ) -> Option<(PhotonMaps, Vec<Vec3>)> {
         let phi: f32 = scene
@@ -161,6 +171,7 @@ impl PhotonMaps {
             seed,
             s.max_depth,
             None,
+            None,
             cancel,
         )?;
         let targets =
@@ -172,6 +183,7 @@ impl PhotonMaps {
             seed ^ 0x5eed,
             s.max_depth,
             targets.as_ref(),
+            connect,
             cancel,
         )?;
         let trace_time = t0.elapsed();
@@ -197,6 +209,8 @@ impl PhotonMaps {
             max_radius,
             targets,
             radii: None,
+            connections: c.connections,
+            splats: Vec::new(),
             stats,
         };
         Some((maps, g.normals))

@@ -10,15 +10,17 @@
 
 use super::budget::choose_counts;
 use super::camera;
+use super::connect;
 use super::gather::PhotonCtx;
 use super::progressive::{iteration_seed, stop_at_power_of_two, IterState};
 use super::radius_field::RadiusFields;
+use super::weights::CausticMode;
 use super::{PhotonMaps, PhotonSettings, PhotonStats, Radii};
 use crate::geometry::Ray;
 use crate::integrator::driver::{PassReport, Start};
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler, SamplerKind};
+use lumis_math::{Rgb, Sampler, SamplerKind, Vec2};
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
@@ -76,7 +78,7 @@ impl<'a> PhotonRun<'a> {
             return self.begin_iteration(cancel);
         }
         if self.maps.is_none() {
-            self.maps = PhotonMaps::build(self.scene, self.settings, self.start.seed, cancel);
+            self.maps = PhotonMaps::build(self.scene, self.settings, self.start.seed, None, cancel);
         }
         self.maps.is_some()
     }
@@ -109,9 +111,12 @@ impl<'a> PhotonRun<'a> {
         }
         let mut s = self.settings.clone();
         (s.global_photons, s.caustic_photons) = (it.global_photons, it.caustic_photons);
-        let trace =
-            |i| PhotonMaps::trace(self.scene, &s, iteration_seed(self.start.seed, i), cancel);
-        let Some((mut maps, normals)) = trace(it.index) else {
+        let connect = self.connect().map(|m| (m, s.gather_rays));
+        let trace = |i, connect| {
+            let seed = iteration_seed(self.start.seed, i);
+            PhotonMaps::trace(self.scene, &s, seed, connect, cancel)
+        };
+        let Some((mut maps, normals)) = trace(it.index, connect) else {
             return false;
         };
         if self.fields.is_none() {
@@ -119,7 +124,7 @@ impl<'a> PhotonRun<'a> {
             // a checkpoint resumes a later iteration).
             let fields = match it.index {
                 0 => RadiusFields::new(&maps, &normals, &s, &p),
-                _ => match trace(0) {
+                _ => match trace(0, None) {
                     Some((first, n)) => RadiusFields::new(&first, &n, &s, &p),
                     None => return false,
                 },
@@ -139,6 +144,11 @@ impl<'a> PhotonRun<'a> {
             0 => s_iter,
             t => s_iter.min(t.saturating_sub(it.start_spp)).max(1),
         } as f32;
+        if let Some(margin) = self.connect() {
+            let splats = connect::weigh(&self.ctx(&maps), &maps.connections, margin);
+            maps.splats = splats;
+            maps.connections = Vec::new();
+        }
         self.totals.add_iteration(&maps.stats);
         self.totals.iteration_photons = (it.global_photons, it.caustic_photons);
         self.totals.render_iterations = it.index + 1;
@@ -151,6 +161,25 @@ impl<'a> PhotonRun<'a> {
 
     /// Whether the time rule chooses the photon counts: under a time
     /// budget, when the settings leave them open.
+    /// The film margin for caustic photons connected to the camera, if
+    /// they are (not in scenes with media: the connection would need the
+    /// transmittance to the lens).
+    /// Only in the progressive mode with the seed's weights (the
+    /// connections' weights need the iteration's radii).
+    fn connect(&self) -> Option<Vec2> {
+        let s = self.settings;
+        let on = s.connect_caustics
+            && s.progressive.is_some()
+            && s.caustics == CausticMode::Mis
+            && !self.scene.has_media();
+        on.then_some(self.start.filter_radius)
+    }
+
+    /// The caustic photons' camera connections of the current maps.
+    pub fn pass_splats(&self) -> &[(Vec2, Rgb)] {
+        self.maps.as_ref().map_or(&[], |m| m.splats.as_slice())
+    }
+
     fn time_rule(&self) -> bool {
         let share = self.settings.progressive.map_or(0.0, |p| p.photon_share);
         self.start.time_limit.is_some() && share > 0.0
@@ -174,14 +203,18 @@ impl<'a> PhotonRun<'a> {
             .maps
             .as_ref()
             .expect("photon maps are built before a pass");
-        let ctx = PhotonCtx {
+        camera::li(&self.ctx(maps), ray, sampler, rays)
+    }
+
+    fn ctx<'m>(&'m self, maps: &'m PhotonMaps) -> PhotonCtx<'m> {
+        PhotonCtx {
             scene: self.scene,
             maps,
             s: self.settings,
             alpha_first: self.alpha,
             pixel_spread: self.start.pixel_spread,
-        };
-        camera::li(&ctx, ray, sampler, rays)
+            connect: self.connect(),
+        }
     }
 
     /// The time the render's next indivisible step would take after the

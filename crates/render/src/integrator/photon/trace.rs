@@ -3,6 +3,7 @@
 //! concatenated in order).
 
 use super::aim::{aimed_emission, Targets};
+use super::connect::{to_camera, Connection};
 use super::photon::Photon;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
@@ -10,7 +11,8 @@ use crate::geometry::Ray;
 use crate::integrator::volpath::{advance, flight_stream, Flight};
 use crate::media::LightMedium;
 use crate::scene::Scene;
-use lumis_math::{Rgb, Sampler, SamplerKind, Vec3};
+use lumis_math::rng::{hash, Pcg32};
+use lumis_math::{Rgb, Sampler, SamplerKind, Vec2, Vec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -31,12 +33,17 @@ pub struct Traced {
     /// Photons stored where they scattered in a medium (`Global`: every
     /// such event; `Caustic`: the first after a purely specular path).
     pub volume: Vec<Photon>,
+    /// Caustic photons connected to the camera (`connect.rs`).
+    pub connections: Vec<Connection>,
 }
 
 const CHUNK: u64 = 4096;
 
 /// Traces `n_emit` photons; gives up (`None`) soon after `cancel` is set:
-/// chunks not yet started are skipped.
+/// chunks not yet started are skipped. `connect`: caustic photons are also
+/// connected to the camera, whose film they may reach within that margin
+/// (the filter's radius, pixels), with `q_2` for that many gather rays.
+#[allow(clippy::too_many_arguments)]
 pub fn trace_photons(
     scene: &Scene,
     n_emit: u64,
@@ -44,6 +51,7 @@ pub fn trace_photons(
     seed: u64,
     max_depth: u32,
     targets: Option<&Targets>,
+    connect: Option<(Vec2, u32)>,
     cancel: &AtomicBool,
 ) -> Option<Traced> {
     if n_emit == 0 || scene.light_sampler.is_empty() {
@@ -61,12 +69,17 @@ pub fn trace_photons(
             let mut rays = 0u64;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_emit) {
                 sampler.start_stream(i, 0);
+                let connect = connect.map(|(margin, m2)| Connect {
+                    margin,
+                    m2,
+                    rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
+                });
                 trace_one(
                     scene,
                     n_emit,
-                    kind,
-                    max_depth,
+                    (kind, max_depth),
                     targets,
+                    connect,
                     &mut sampler,
                     &mut out,
                     &mut rays,
@@ -88,22 +101,32 @@ pub fn trace_photons(
         photons: Vec::with_capacity(total),
         normals: Vec::with_capacity(total),
         volume: Vec::new(),
+        connections: Vec::new(),
     };
     for p in parts {
         all.photons.extend(p.photons);
         all.normals.extend(p.normals);
         all.volume.extend(p.volume);
+        all.connections.extend(p.connections);
     }
     Some(all)
+}
+
+/// A photon's connections to the camera: the film margin, and a stream of
+/// its own, so the photon's path (and the maps) are those without them.
+struct Connect {
+    margin: Vec2,
+    m2: u32,
+    rng: Pcg32,
 }
 
 #[allow(clippy::too_many_arguments)]
 fn trace_one(
     scene: &Scene,
     n_emit: u64,
-    kind: MapKind,
-    max_depth: u32,
+    (kind, max_depth): (MapKind, u32),
     targets: Option<&Targets>,
+    mut connect: Option<Connect>,
     sampler: &mut Sampler,
     out: &mut Traced,
     rays: &mut u64,
@@ -219,6 +242,12 @@ fn trace_one(
                     if depth > 0 && specular_only {
                         out.photons.push(Photon::new(hit.geom.p, power, wo, le_lum));
                         out.normals.push(n);
+                        if let Some(c) = connect.as_mut() {
+                            let at = (c.margin, c.m2);
+                            let pl = (power, le_lum);
+                            let conn = to_camera(scene, &hit, &bsdf, wo, pl, at, &mut c.rng, rays);
+                            out.connections.extend(conn);
+                        }
                     }
                     // A delta lobe (smooth coat) may still carry the caustic on.
                     if !bsdf.has_delta_lobe() {

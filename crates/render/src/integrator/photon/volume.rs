@@ -118,6 +118,8 @@ pub(super) fn shade_medium(
             q1_measure: delta_v,
             alpha,
             m2,
+            // No camera connections with media.
+            inv_j: 0.0,
         };
         // The phase function is sampled exactly: its weight is 1.
         gathered += super::gather::trace_gather(ctx, &g, depth, sampler, rays);

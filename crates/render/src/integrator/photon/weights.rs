@@ -170,6 +170,33 @@ pub fn w2(q1: f32, q2: f32, mode: CausticMode, h: Heuristic) -> f32 {
     1.0 - w1(q1, q2, mode, h)
 }
 
+/// The weights `[w_1, w_2, w_3]` of a caustic path at a camera ray's first
+/// hit when the caustic photons are also connected to the camera (a third
+/// technique, `q_3 = N L_e cos(theta) / (Phi S J)`: the light tracer's
+/// paths per camera sample, `J` the pixels per unit area at the hit and `S`
+/// the samples per pixel that share the photons, in the same measure as
+/// the seed's `q_1` and `q_2`). A delta light (`q_1` and `q_3` infinite) is
+/// found by the photons and the connections only, in the ratio `r3 = q_3 /
+/// q_1` (finite). The three sum to one whatever the inputs.
+#[inline]
+pub fn mis3(q1: f32, q2: f32, q3: f32, r3: f32, h: Heuristic) -> [f32; 3] {
+    let p = |q: f32| match h {
+        Heuristic::Balance => q as f64,
+        Heuristic::Power => q as f64 * q as f64,
+    };
+    let (a, b, c) = if q1.is_infinite() || q3.is_infinite() {
+        (1.0, 0.0, p(r3))
+    } else {
+        (p(q1), p(q2), p(q3))
+    };
+    let sum = a + b + c;
+    if !(sum > 0.0 && sum.is_finite()) {
+        // Nothing to weigh (a zero contribution) or an infinite `r3`.
+        return [0.0, 0.0, 1.0];
+    }
+    [(a / sum) as f32, (b / sum) as f32, (c / sum) as f32]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
