@@ -1,5 +1,5 @@
 //! [`Job`]: a `RenderJob` made from keyword arguments as the CLI makes one
-//! from its flags (`crates/cli/src/job.rs`): the same fields, the same
+//! from its flags (`lumis_render::session::RenderFlags`): the same fields, the same
 //! parameter overrides, each labelled with its keyword (`resolution=`) so
 //! the library's errors point at it.
 

@@ -14,13 +14,13 @@
 //! - `parts`: merging partial renders (parts) into the whole image;
 //! - `rendered`: a render's result as Python values;
 //! - `study`: studies (`lumis study`), whole or one run at a time, with
-//!   run flags made into jobs by `flags`;
+//!   run flags made into jobs as the CLI makes them
+//!   (`lumis_render::session::job_from_flags`);
 //! - `thread`: work on a Rust thread, waited for without the GIL;
 //! - `images`: reading, writing and comparing images;
 //! - `errors`: library errors as Python exceptions.
 
 mod errors;
-mod flags;
 mod images;
 mod job;
 mod params;

@@ -1,33 +1,19 @@
 //! The integrators' own parameters as keyword arguments, from the tables
-//! the integrators declare (the ones the CLI makes its flags from):
+//! the integrators declare (the library's `session::integrator_params`,
+//! which the CLI makes its flags from):
 //! `caustic_photons=` for the flag `--caustic-photons`, i.e. for the scene
 //! file's `"integer causticphotons"`. The scene-file name is accepted too.
 
-use lumis_render::integrator::{bdpt, photon, vcm};
+use lumis_render::session::{integrator_params, param_text};
 use lumis_scene::ParamSpec;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
-/// The integrators' parameter tables (as the CLI's `args.rs` lists them).
-const TABLES: [(&str, &[ParamSpec]); 3] = [
-    ("photon", photon::PARAMS),
-    ("bdpt", bdpt::PARAMS),
-    ("vcm", vcm::PARAMS),
-];
-
 /// Each parameter once (a name two integrators share is one keyword), in
 /// table order.
 pub fn all() -> Vec<&'static ParamSpec> {
-    let mut out: Vec<&'static ParamSpec> = Vec::new();
-    for (_, table) in TABLES {
-        for s in table {
-            if !out.iter().any(|o| o.name == s.name) {
-                out.push(s);
-            }
-        }
-    }
-    out
+    integrator_params().into_iter().map(|p| p.spec).collect()
 }
 
 /// The keyword of `s`: its command-line words with underscores.
@@ -64,19 +50,13 @@ pub fn scene_text(value: &Bound<'_, PyAny>, ty: &str) -> PyResult<String> {
     }
     if value.is_instance_of::<PyString>() {
         let s: String = value.extract()?;
-        return Ok(match ty {
-            "string" => {
-                if s.contains('"') {
-                    return Err(PyTypeError::new_err(format!(
-                        "a string parameter cannot contain a double quote: {s:?}"
-                    )));
-                }
-                format!("\"{s}\"")
-            }
-            // `strategy="2,3"`: a list of integers, as `--strategy 2,3`.
-            "integer" => s.replace(',', " "),
-            _ => s.to_string(),
-        });
+        if ty == "string" && s.contains('"') {
+            return Err(PyTypeError::new_err(format!(
+                "a string parameter cannot contain a double quote: {s:?}"
+            )));
+        }
+        // As typed after a flag: `strategy="2,3"` as `--strategy 2,3`.
+        return Ok(param_text(ty, &s));
     }
     if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
         let items: PyResult<Vec<String>> = value.try_iter()?.map(|v| scene_text(&v?, ty)).collect();
@@ -100,19 +80,14 @@ pub fn scene_text(value: &Bound<'_, PyAny>, ty: &str) -> PyResult<String> {
 #[pyfunction]
 pub fn parameters(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let out = PyDict::new(py);
-    for s in all() {
-        let help: Vec<String> = TABLES
-            .iter()
-            .flat_map(|(name, table)| table.iter().map(move |o| (name, o)))
-            .filter(|(_, o)| o.name == s.name)
-            .map(|(n, o)| format!("{n}: {}", o.help))
-            .collect();
+    for p in integrator_params() {
+        let s = p.spec;
         let entry = PyDict::new(py);
         entry.set_item("type", s.ty)?;
         entry.set_item("name", s.name)?;
         entry.set_item("flag", format!("--{}", s.words))?;
         entry.set_item("value", s.value)?;
-        entry.set_item("help", help.join("; "))?;
+        entry.set_item("help", p.help)?;
         out.set_item(keyword(s), entry)?;
     }
     Ok(out)

@@ -2,11 +2,11 @@
 //! runs and the report, as `lumis study`) or one of its runs, on a Rust
 //! thread that Python waits for in slices (Ctrl-C stops it after the
 //! current run; finished runs are kept). A run's flags become a job as the
-//! CLI's flags do (`flags.rs`).
+//! CLI's flags do (the library's `session::job_from_flags`).
 
 use crate::errors::session_error;
 use crate::thread::{spawn, wait_detached, Slot};
-use lumis_render::session::SessionError;
+use lumis_render::session::{self as lib, SessionError};
 use lumis_render::study::{self, Config, OneRun, StudyRun};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -34,7 +34,7 @@ pub fn study_runs(py: Python<'_>, config: PathBuf) -> PyResult<Vec<(String, Vec<
 /// run's flags become its job); `ValueError` for flags it does not know.
 #[pyfunction]
 pub fn job_from_flags(args: Vec<String>) -> PyResult<crate::job::Job> {
-    let job = crate::flags::job_from_flags(&args).map_err(PyValueError::new_err)?;
+    let job = lib::job_from_flags(&args).map_err(PyValueError::new_err)?;
     Ok(crate::job::Job { job })
 }
 
@@ -69,7 +69,7 @@ pub fn start_study(
         let a = StudyRun {
             out,
             command,
-            job_for: &crate::flags::job_from_flags,
+            job_for: &lib::job_from_flags,
             cancel: &c2,
             log: &log,
         };

@@ -1,5 +1,6 @@
 """A study run's `lumis render` flags become the job the CLI makes of
-them (python/src/flags.rs, used by lumis.distributed.study's tasks): the
+them (lumis_render::session::job_from_flags, used by
+lumis.distributed.study's tasks): the
 same image bit for bit, for flags of every kind."""
 
 import numpy as np

@@ -1,7 +1,7 @@
 //! Command-line arguments as typed (first stage); `run.rs` turns them into settings.
 
 use clap::{Arg, ArgAction, ArgMatches, Args, FromArgMatches, Parser, Subcommand};
-use lumis_render::integrator::{bdpt, photon, vcm};
+use lumis_render::session::{integrator_params, DEFAULT_CHECKPOINT_EVERY};
 use lumis_scene::ParamSpec;
 use std::path::PathBuf;
 
@@ -157,7 +157,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
     /// Seconds between checkpoints.
-    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_CHECKPOINT_EVERY)]
     pub checkpoint_every: f64,
     /// Continue the render saved in FILE, as it was set up (only -o, --threads,
     /// --time, --checkpoint*, --display-server, -q/-v and --stats may be given).
@@ -186,33 +186,9 @@ pub struct RenderArgs {
     pub inject_nan: Option<(u32, u32, u32)>,
 }
 
-/// The integrators' parameter tables the flags are made from.
-const TABLES: [(&str, &[ParamSpec]); 3] = [
-    ("photon", photon::PARAMS),
-    ("bdpt", bdpt::PARAMS),
-    ("vcm", vcm::PARAMS),
-];
-
-/// Each parameter once (a name two integrators share makes one flag), with
-/// its help: each integrator that reads it and what it means there.
-fn all_params() -> impl Iterator<Item = (String, &'static ParamSpec)> {
-    let all = || {
-        TABLES
-            .iter()
-            .flat_map(|(name, table)| table.iter().map(move |s| (*name, s)))
-    };
-    all().enumerate().filter_map(move |(i, (_, s))| {
-        let help: Vec<String> = all()
-            .filter(|(_, o)| o.name == s.name)
-            .map(|(n, o)| format!("{n}: {}", o.help))
-            .collect();
-        let first = all().position(|(_, o)| o.name == s.name) == Some(i);
-        first.then(|| (help.join("; "), s))
-    })
-}
-
-/// Flags made from the integrators' parameter tables: `--caustic-photons N`
-/// for `"integer causticphotons"`, so each parameter is declared once.
+/// Flags made from the integrators' parameter tables (the library's
+/// `session::integrator_params`): `--caustic-photons N` for
+/// `"integer causticphotons"`, so each parameter is declared once.
 #[derive(Clone, Debug, Default)]
 pub struct IntegratorParams {
     /// The parameters given, with their values as typed, in table order.
@@ -221,8 +197,12 @@ pub struct IntegratorParams {
 
 impl FromArgMatches for IntegratorParams {
     fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
-        let values = all_params()
-            .filter_map(|(_, s)| m.get_one::<String>(s.name).map(|v| (s, v.clone())))
+        let values = integrator_params()
+            .into_iter()
+            .filter_map(|p| {
+                m.get_one::<String>(p.spec.name)
+                    .map(|v| (p.spec, v.clone()))
+            })
             .collect();
         Ok(IntegratorParams { values })
     }
@@ -234,11 +214,12 @@ impl FromArgMatches for IntegratorParams {
 
 impl Args for IntegratorParams {
     fn augment_args(mut cmd: clap::Command) -> clap::Command {
-        for (help, s) in all_params() {
+        for p in integrator_params() {
+            let s = p.spec;
             let mut a = Arg::new(s.name)
                 .long(s.words)
                 .value_name(s.value)
-                .help(help)
+                .help(p.help)
                 .action(ArgAction::Set);
             if s.ty == "bool" {
                 // `--aim-caustics` alone means true.

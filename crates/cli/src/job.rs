@@ -1,82 +1,40 @@
-//! Command-line arguments → a [`RenderJob`]: each flag becomes a field of
-//! the job or a parameter layered over the scene file's, labelled with the
-//! flag so the library's errors and warnings point at it.
+//! Command-line arguments → a [`RenderJob`]: clap's arguments as the
+//! library's [`RenderFlags`], which make the job (`session::flags`, shared
+//! with study runs from Python), and `--resume`'s job.
 
 use crate::args::RenderArgs;
 use anyhow::{bail, Result};
-use lumis_render::session::{Accel, Budget, CheckpointSpec, RenderJob};
-use lumis_scene::Overrides;
+use lumis_render::session::{CheckpointSpec, RenderFlags, RenderJob};
 
 /// The job `a` describes (made in the current folder).
 pub fn job_from_args(a: &RenderArgs) -> Result<RenderJob> {
-    let mut job = RenderJob::new(a.scene.clone());
-    job.overrides = overrides(a);
-    job.seed = a.seed;
-    job.budget = Budget {
+    flags(a).job().map_err(anyhow::Error::msg)
+}
+
+/// The flags of `a` that make its job.
+fn flags(a: &RenderArgs) -> RenderFlags {
+    RenderFlags {
+        scene: a.scene.clone(),
+        output: a.output.clone(),
         spp: a.spp,
         time: a.time,
-    };
-    job.threads = a.threads.unwrap_or(0);
-    job.clamp = a.clamp;
-    job.accel = accel(a.accel.as_deref())?;
-    job.outputs = a.output.iter().cloned().collect();
-    job.exposure = a.exposure;
-    job.checkpoint = a.checkpoint.as_ref().map(|p| CheckpointSpec {
-        path: job.resolve(p),
-        every: a.checkpoint_every,
-    });
-    job.inject_nan = a.inject_nan;
-    if let Some(p) = &a.partial {
-        job.passes = a.passes.clone();
-        job.checkpoint = Some(CheckpointSpec {
-            path: job.resolve(p),
-            every: a.checkpoint_every,
-        });
+        threads: a.threads,
+        seed: a.seed,
+        integrator: a.integrator.clone(),
+        maxdepth: a.maxdepth,
+        resolution: a.resolution,
+        crop: a.crop,
+        exposure: a.exposure,
+        sampler: a.sampler.clone(),
+        clamp: a.clamp,
+        accel: a.accel.clone(),
+        params: a.params.values.clone(),
+        checkpoint: a.checkpoint.clone(),
+        checkpoint_every: a.checkpoint_every,
+        passes: a.passes.clone(),
+        partial: a.partial.clone(),
+        inject_nan: a.inject_nan,
     }
-    Ok(job)
-}
-
-/// The flags that override the scene file, as parameter overrides.
-fn overrides(a: &RenderArgs) -> Overrides {
-    let mut o = Overrides::default();
-    if let Some((w, h)) = a.resolution {
-        o.resolution_from(w, h, "--resolution");
-    }
-    if let Some(c) = a.crop {
-        o.crop_from(c, "--crop");
-    }
-    if let Some(s) = &a.sampler {
-        o.sampler_from(s, "--sampler");
-    }
-    if let Some(i) = &a.integrator {
-        o.integrator_from(i, "--integrator");
-    }
-    if let Some(d) = a.maxdepth {
-        o.max_depth_from(d, "--maxdepth");
-    }
-    for (s, v) in &a.params.values {
-        let value = match s.ty {
-            "string" => format!("\"{v}\""),
-            // `--strategy 2,3`: a list of integers.
-            "integer" => v.replace(',', " "),
-            _ => v.clone(),
-        };
-        o.param(
-            "Integrator",
-            &format!("{} {}", s.ty, s.name),
-            &value,
-            &format!("--{}", s.words),
-        );
-    }
-    o
-}
-
-fn accel(name: Option<&str>) -> Result<Accel> {
-    Ok(match name.unwrap_or("bvh") {
-        "bvh" => Accel::Bvh,
-        "embree" => Accel::Embree,
-        other => bail!("unknown --accel `{other}`: expected `bvh` or `embree`"),
-    })
 }
 
 /// `--resume FILE` without a scene: the saved job, with this run's own

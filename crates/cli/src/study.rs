@@ -57,3 +57,79 @@ pub fn run(a: StudyArgs) -> Result<ExitCode> {
     }
     Ok(ExitCode::SUCCESS)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::job_for;
+    use lumis_render::session::job_from_flags;
+
+    /// A run's flags make one job whether clap parses them (here) or the
+    /// library's parser does (study runs from Python).
+    #[test]
+    fn clap_and_the_librarys_parser_make_one_job() {
+        let sets: &[&[&str]] = &[
+            &[
+                "--integrator",
+                "path",
+                "--maxdepth",
+                "3",
+                "--sampler",
+                "independent",
+            ],
+            &[
+                "--integrator",
+                "photon",
+                "--photons",
+                "20000",
+                "--caustic-photons",
+                "30000",
+                "--caustics",
+                "mis",
+                "--crop",
+                "0.25,0.75,0,1",
+                "--clamp",
+                "4",
+            ],
+            &[
+                "--integrator=photon",
+                "--progressive",
+                "false",
+                "--radiance-photons",
+                "--seed",
+                "3",
+            ],
+            &[
+                "--integrator",
+                "bdpt",
+                "--strategy",
+                "2,3",
+                "--maxdepth",
+                "4",
+                "--mis",
+                "false",
+            ],
+            &[
+                "s.pbrt",
+                "--resolution",
+                "24x16",
+                "--spp",
+                "2",
+                "--time",
+                "1.5",
+                "--threads",
+                "1",
+                "-o",
+                "a.pfm",
+                "--exposure",
+                "-1.5",
+                "--accel",
+                "bvh",
+                "--stats",
+            ],
+        ];
+        for set in sets {
+            let args: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+            assert_eq!(job_for(&args), job_from_flags(&args), "{set:?}");
+        }
+    }
+}

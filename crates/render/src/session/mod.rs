@@ -3,11 +3,16 @@
 //! studies, checkpoints and resumes, a future Python package, distributed
 //! workers) builds a job and drives a session; none repeats these steps.
 
+mod flags;
 mod job;
 mod merge;
 mod merger;
 mod output;
 
+pub use flags::{
+    integrator_params, job_from_flags, param_text, IntegratorParam, RenderFlags,
+    DEFAULT_CHECKPOINT_EVERY, PARAM_TABLES,
+};
 pub use job::{Accel, Budget, CheckpointSpec, RenderJob};
 pub use merge::{merge, Part};
 pub use merger::{merged_image, Merger};
