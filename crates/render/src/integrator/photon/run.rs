@@ -159,13 +159,10 @@ impl<'a> PhotonRun<'a> {
         true
     }
 
-    /// Whether the time rule chooses the photon counts: under a time
-    /// budget, when the settings leave them open.
     /// The film margin for caustic photons connected to the camera, if
-    /// they are (not in scenes with media: the connection would need the
-    /// transmittance to the lens).
-    /// Only in the progressive mode with the seed's weights (the
-    /// connections' weights need the iteration's radii).
+    /// they are: only in the progressive mode with the seed's weights (the
+    /// connections' weights need the iteration's radii), and not in scenes
+    /// with media (the connection would need the transmittance to the lens).
     fn connect(&self) -> Option<Vec2> {
         let s = self.settings;
         let on = s.connect_caustics
@@ -180,6 +177,8 @@ impl<'a> PhotonRun<'a> {
         self.maps.as_ref().map_or(&[], |m| m.splats.as_slice())
     }
 
+    /// Whether the time rule chooses the photon counts: under a time
+    /// budget, when the settings leave them open.
     fn time_rule(&self) -> bool {
         let share = self.settings.progressive.map_or(0.0, |p| p.photon_share);
         self.start.time_limit.is_some() && share > 0.0
