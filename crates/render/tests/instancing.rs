@@ -205,3 +205,69 @@ fn same_prim(a: Prim, b: Prim) -> bool {
         _ => false,
     }
 }
+
+/// `Scene::intersect_unless` (geometry only for hits the caller keeps)
+/// gives `intersect`'s hits bit for bit, on the world's primitives and on
+/// instances, and skips exactly the hits on materials it is told end there.
+#[test]
+fn hits_without_geometry_are_the_same_hits() {
+    let mesh = bumpy_sphere(8);
+    let text = format!(
+        "Camera \"perspective\"\nWorldBegin\nLightSource \"distant\"\n\
+         ObjectBegin \"m\"\nMaterial \"diffuse\"\nShape \"trianglemesh\" {mesh}\nObjectEnd\n\
+         AttributeBegin Translate 2 0 0 ObjectInstance \"m\" AttributeEnd\n\
+         AttributeBegin Translate -2 0 0 Rotate 30 0 0 1 ObjectInstance \"m\" AttributeEnd\n\
+         Material \"dielectric\"\nShape \"trianglemesh\" {mesh}\n\
+         Material \"diffuse\"\nShape \"sphere\" \"float radius\" 0.5\n"
+    );
+    let s = load(&text, &Default::default()).scene;
+    assert!(!s.instances.is_empty());
+    let mut rng = Pcg32::new(11, 0);
+    let mut rv = |k: f32| Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 * k - k;
+    let (mut kept, mut skipped) = (0, 0);
+    for _ in 0..20_000 {
+        let o = rv(6.0);
+        let ray = Ray::new(o, (rv(2.5) - o).normalize());
+        let full = s.intersect(&ray);
+        let diffuse = |m: &lumis_render::material::Material| m.never_delta();
+        match (full, s.intersect_unless(&ray, diffuse)) {
+            (None, None) => {}
+            (Some(h), Some(None)) => {
+                assert!(s.materials[h.material as usize].never_delta());
+                skipped += 1;
+            }
+            (Some(h), Some(Some(g))) => {
+                assert!(!s.materials[h.material as usize].never_delta());
+                assert_eq!(
+                    (
+                        h.t.to_bits(),
+                        h.geom.p.to_array(),
+                        h.geom.ns.to_array(),
+                        h.material
+                    ),
+                    (
+                        g.t.to_bits(),
+                        g.geom.p.to_array(),
+                        g.geom.ns.to_array(),
+                        g.material
+                    )
+                );
+                kept += 1;
+            }
+            (a, b) => panic!(
+                "{:?} against {:?}",
+                a.map(|h| h.t),
+                b.map(|h| h.map(|h| h.t))
+            ),
+        }
+        let all = s.intersect_unless(&ray, |_| false).flatten();
+        assert_eq!(
+            full.map(|h| h.geom.ng.to_array()),
+            all.map(|h| h.geom.ng.to_array())
+        );
+    }
+    assert!(
+        kept > 1000 && skipped > 1000,
+        "{kept} kept, {skipped} skipped"
+    );
+}

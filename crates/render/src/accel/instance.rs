@@ -113,6 +113,12 @@ impl Instances {
         })
     }
 
+    /// The primitive that was hit.
+    pub fn info(&self, h: &InstanceHit) -> PrimInfo {
+        let inst = &self.instances[h.instance as usize];
+        self.objects[inst.object as usize].prims[h.hit.slot as usize]
+    }
+
     /// The primitive that was hit, and its world-space geometry.
     pub fn geometry(&self, shapes: &Shapes, h: &InstanceHit, ray: &Ray) -> (PrimInfo, SurfaceGeom) {
         let inst = &self.instances[h.instance as usize];

@@ -25,6 +25,26 @@ use crate::geometry::{Ray, Shapes};
 /// Closest hit along the ray over the world's primitives and the instances.
 #[inline]
 pub fn closest(shapes: &Shapes, world: &PrimBvh, instances: &Instances, ray: &Ray) -> Option<Hit> {
+    let found = closest_found(shapes, world, instances, ray)?;
+    Some(found.finish(shapes, world, instances, ray))
+}
+
+/// A closest hit before its geometry: enough to tell its primitive, whose
+/// geometry [`Found::finish`] computes only for the hits that need it.
+#[derive(Clone, Copy, Debug)]
+pub enum Found {
+    World(LevelHit),
+    Instance(InstanceHit),
+}
+
+/// [`closest`] without the hit's geometry.
+#[inline]
+pub fn closest_found(
+    shapes: &Shapes,
+    world: &PrimBvh,
+    instances: &Instances,
+    ray: &Ray,
+) -> Option<Found> {
     let world_hit = world.closest(shapes, ray);
     if !instances.is_empty() {
         let mut r = *ray;
@@ -32,13 +52,42 @@ pub fn closest(shapes: &Shapes, world: &PrimBvh, instances: &Instances, ray: &Ra
             r.tmax = h.t;
         }
         if let Some(ih) = instances.closest(shapes, &r) {
-            let (info, geom) = instances.geometry(shapes, &ih, ray);
-            return Some(Hit::new(ih.hit.t, geom, info));
+            return Some(Found::Instance(ih));
         }
     }
-    let h = world_hit?;
-    let geom = world.geometry(shapes, &h, ray);
-    Some(Hit::new(h.t, geom, world.prims[h.slot as usize]))
+    world_hit.map(Found::World)
+}
+
+impl Found {
+    /// The primitive hit (its material, light and shape).
+    #[inline]
+    pub fn info(&self, world: &PrimBvh, instances: &Instances) -> PrimInfo {
+        match self {
+            Found::World(h) => world.prims[h.slot as usize],
+            Found::Instance(ih) => instances.info(ih),
+        }
+    }
+
+    /// The hit with its geometry, for the ray that found it.
+    #[inline]
+    pub fn finish(
+        &self,
+        shapes: &Shapes,
+        world: &PrimBvh,
+        instances: &Instances,
+        ray: &Ray,
+    ) -> Hit {
+        match self {
+            Found::Instance(ih) => {
+                let (info, geom) = instances.geometry(shapes, ih, ray);
+                Hit::new(ih.hit.t, geom, info)
+            }
+            Found::World(h) => {
+                let geom = world.geometry(shapes, h, ray);
+                Hit::new(h.t, geom, world.prims[h.slot as usize])
+            }
+        }
+    }
 }
 
 /// Whether anything among the world's primitives and the instances blocks

@@ -109,6 +109,17 @@ impl Material {
         }
     }
 
+    /// No BSDF of this material is delta or has a delta lobe, wherever it
+    /// is hit (a photon's specular chain ends on it).
+    pub fn never_delta(&self) -> bool {
+        matches!(
+            self.kind,
+            MaterialKind::Diffuse(_)
+                | MaterialKind::Phong(_)
+                | MaterialKind::DiffuseTransmission(_)
+        )
+    }
+
     pub fn is_interface(&self) -> bool {
         matches!(self.kind, MaterialKind::Interface(_))
     }

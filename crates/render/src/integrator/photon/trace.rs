@@ -9,6 +9,7 @@ use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
 use crate::integrator::volpath::{advance, flight_stream, Flight};
+use crate::material::Material;
 use crate::media::LightMedium;
 use crate::scene::Scene;
 use lumis_math::rng::{hash, Pcg32};
@@ -181,7 +182,16 @@ fn trace_one(
     let mut rng = scene.has_media().then(|| flight_stream(sampler));
     'bounce: for depth in 0..=max_depth {
         *rays += 1;
-        let mut hit = scene.intersect(&ray);
+        // A caustic photon ends unstored where its first hit has no
+        // specular part: there its hit's geometry is not needed.
+        let mut hit = if kind == MapKind::Caustic && depth == 0 && rng.is_none() {
+            match scene.intersect_unless(&ray, Material::never_delta) {
+                Some(None) => return,
+                found => found.flatten(),
+            }
+        } else {
+            scene.intersect(&ray)
+        };
         if let Some(rng) = rng.as_mut() {
             // Free flights, and pure boundaries crossed, up to the next
             // surface that scatters or a scattering event in a medium.
