@@ -1,6 +1,6 @@
 //! Sampling points on shapes, by area and by solid angle from a reference point.
 
-use super::triangle::triangle_geometry;
+use super::triangle::triangle_point;
 use super::{Prim, Shapes};
 use lumis_math::sampling::{square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf};
 use lumis_math::{safe_sqrt, Frame, Vec2, Vec3};
@@ -19,10 +19,10 @@ pub fn sample_area(shapes: &Shapes, prim: Prim, u: Vec2) -> ShapePoint {
         Prim::Triangle { mesh, tri } => {
             let m = &shapes.meshes[mesh as usize];
             let (b0, b1) = lumis_math::sampling::square_to_uniform_triangle(u);
-            let g = triangle_geometry(m, tri, b1, 1.0 - b0 - b1);
+            let (p, n) = triangle_point(m, tri, b1, 1.0 - b0 - b1);
             ShapePoint {
-                p: g.p,
-                n: g.ng,
+                p,
+                n,
                 pdf: 1.0 / m.area(tri),
             }
         }

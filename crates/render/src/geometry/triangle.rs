@@ -104,16 +104,9 @@ pub fn watertight_tail(u: f32, vv: f32, w: f32, z: [f32; 3], tmax: f32) -> Optio
 
 /// Surface geometry at barycentrics (b1, b2) of triangle `tri`.
 pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> SurfaceGeom {
-    let i = 3 * tri as usize;
-    let idx = [
-        mesh.indices[i] as usize,
-        mesh.indices[i + 1] as usize,
-        mesh.indices[i + 2] as usize,
-    ];
-    let [p0, p1, p2] = mesh.vertices(tri);
-    let b0 = 1.0 - b1 - b2;
+    let (idx, [p0, p1, p2], b0) = corners(mesh, tri, b1, b2);
     let p = b0 * p0 + b1 * p1 + b2 * p2;
-    let mut ng = (p0 - p2).cross(p1 - p2).normalize_or_zero();
+    let ng = (p0 - p2).cross(p1 - p2).normalize_or_zero();
     let (uv0, uv1, uv2) = match &mesh.uvs {
         Some(uv) => (uv[idx[0]], uv[idx[1]], uv[idx[2]]),
         None => (
@@ -136,9 +129,53 @@ pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> Sur
         let f = Frame::from_normal(ng);
         (dpdu, dpdv) = (f.s, f.t);
     }
+    let (ng, ns) = oriented_normals(mesh, idx, [b0, b1, b2], ng);
+    SurfaceGeom {
+        p,
+        ng,
+        ns,
+        dpdu,
+        dpdv,
+        uv,
+    }
+}
+
+/// The point at barycentrics (`b1`, `b2`) of triangle `tri` and its
+/// geometric normal, as [`triangle_geometry`] gives them (area sampling
+/// needs no more).
+pub fn triangle_point(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> (Vec3, Vec3) {
+    let (idx, [p0, p1, p2], b0) = corners(mesh, tri, b1, b2);
+    let p = b0 * p0 + b1 * p1 + b2 * p2;
+    let ng = (p0 - p2).cross(p1 - p2).normalize_or_zero();
+    (p, oriented_normals(mesh, idx, [b0, b1, b2], ng).0)
+}
+
+/// Triangle `tri`'s vertex indices and positions, and the barycentric
+/// `b0 = 1 - b1 - b2`.
+#[inline]
+fn corners(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> ([usize; 3], [Vec3; 3], f32) {
+    let i = 3 * tri as usize;
+    let idx = [
+        mesh.indices[i] as usize,
+        mesh.indices[i + 1] as usize,
+        mesh.indices[i + 2] as usize,
+    ];
+    (idx, mesh.vertices(tri), 1.0 - b1 - b2)
+}
+
+/// The geometric normal `ng` turned to the side of the interpolated vertex
+/// normals, and the shading normal (`ng` without vertex normals), with
+/// `ReverseOrientation` applied.
+#[inline]
+fn oriented_normals(
+    mesh: &TriangleMesh,
+    idx: [usize; 3],
+    b: [f32; 3],
+    mut ng: Vec3,
+) -> (Vec3, Vec3) {
     let mut ns = ng;
     if let Some(n) = &mesh.normals {
-        let interp = b0 * n[idx[0]] + b1 * n[idx[1]] + b2 * n[idx[2]];
+        let interp = b[0] * n[idx[0]] + b[1] * n[idx[1]] + b[2] * n[idx[2]];
         if interp.length_squared() > 0.0 {
             ns = interp.normalize();
             if mesh.flip_normals {
@@ -155,14 +192,7 @@ pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> Sur
         ng = -ng;
         ns = ng;
     }
-    SurfaceGeom {
-        p,
-        ng,
-        ns,
-        dpdu,
-        dpdv,
-        uv,
-    }
+    (ng, ns)
 }
 
 #[cfg(test)]
@@ -216,6 +246,36 @@ mod tests {
             let hits = intersect_triangle(&r, &sh, &a, f32::INFINITY).is_some() as u32
                 + intersect_triangle(&r, &sh, &b, f32::INFINITY).is_some() as u32;
             assert!(hits >= 1, "ray through shared edge leaked");
+        }
+    }
+
+    /// Area sampling's point and normal are `triangle_geometry`'s bit for
+    /// bit, with and without vertex normals (some facing away) and flips.
+    #[test]
+    fn triangle_point_is_the_geometry_s_point_and_normal() {
+        let mut rng = lumis_math::Pcg32::new(9, 0);
+        let mut v = || Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
+        let positions: Vec<Vec3> = (0..30).map(|_| v()).collect();
+        let normals: Vec<Vec3> = (0..30).map(|_| v()).collect();
+        let indices: Vec<u32> = (0..30).collect();
+        let mut rng = lumis_math::Pcg32::new(10, 0);
+        for (with_normals, flip) in [(false, false), (false, true), (true, false), (true, true)] {
+            let mesh = TriangleMesh {
+                positions: positions.clone(),
+                normals: with_normals.then(|| normals.clone()),
+                uvs: None,
+                indices: indices.clone(),
+                flip_normals: flip,
+            };
+            for tri in 0..10 {
+                let (b1, b2) = (rng.next_f32() * 0.5, rng.next_f32() * 0.5);
+                let g = triangle_geometry(&mesh, tri, b1, b2);
+                let (p, n) = triangle_point(&mesh, tri, b1, b2);
+                assert_eq!(
+                    (p.to_array(), n.to_array()),
+                    (g.p.to_array(), g.ng.to_array())
+                );
+            }
         }
     }
 }
