@@ -7,6 +7,7 @@ mod common;
 use common::*;
 use lumis_math::{Pcg32, Vec3};
 use lumis_render::geometry::{Prim, Ray};
+use lumis_render::material::Material;
 
 /// A binary little-endian PLY height field of `nx * ny * 2` triangles.
 fn write_grid_ply(path: &std::path::Path, nx: usize, ny: usize) {
@@ -229,8 +230,7 @@ fn hits_without_geometry_are_the_same_hits() {
         let o = rv(6.0);
         let ray = Ray::new(o, (rv(2.5) - o).normalize());
         let full = s.intersect(&ray);
-        let diffuse = |m: &lumis_render::material::Material| m.never_delta();
-        match (full, s.intersect_unless(&ray, diffuse)) {
+        match (full, s.intersect_unless(&ray, Material::never_delta)) {
             (None, None) => {}
             (Some(h), Some(None)) => {
                 assert!(s.materials[h.material as usize].never_delta());

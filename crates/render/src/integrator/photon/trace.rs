@@ -184,7 +184,7 @@ fn trace_one(
         *rays += 1;
         // A caustic photon ends unstored where its first hit has no
         // specular part: there its hit's geometry is not needed.
-        let mut hit = if kind == MapKind::Caustic && depth == 0 && rng.is_none() {
+        let mut hit = if kind == MapKind::Caustic && depth == 0 && !scene.has_media() {
             match scene.intersect_unless(&ray, Material::never_delta) {
                 Some(None) => return,
                 found => found.flatten(),
