@@ -1,6 +1,6 @@
 //! End-to-end tests of the `lumis` binary: outputs, summary, and bad input.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::path::Path;

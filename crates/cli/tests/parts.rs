@@ -3,7 +3,7 @@
 //! continued with `--resume`, merge to the bits of the whole render; parts
 //! that do not make one render are refused with the reason.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! file read to build that scene counts (included files, texture images).
 //! Resuming the unchanged scene is tested in cli.rs.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::image_io::{write_image, RgbImage};

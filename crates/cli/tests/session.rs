@@ -2,7 +2,7 @@
 //! is spent, `--resume` honouring `-o` and refusing flags it would drop,
 //! and command-line parameters read (and reported) like the file's.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::time::Instant;

@@ -1,7 +1,7 @@
 //! End-to-end: a reader of stdout that stops early (`lumis compare a b |
 //! head -3`) ends the program quietly, as with other command-line tools.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::image_io::{write_image, RgbImage};

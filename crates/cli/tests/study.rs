@@ -2,7 +2,7 @@
 //! here) writes its report, every image and finite metrics, and a rerun
 //! resumes by skipping every finished run. Also `compare --heatmap`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use std::path::Path;

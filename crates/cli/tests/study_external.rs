@@ -4,7 +4,7 @@
 //! program's image, slopes, skipping, and a rerun that neither renders nor
 //! calibrates again.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::study::calibrate::Calibration;

@@ -2,9 +2,9 @@
 //! once, then UpdateImage tiles of at most 128x128) and its final image must
 //! equal the written EXR; an absent or vanishing viewer is one warning.
 
+use crate::common;
 use std::io::Read;
 use std::net::TcpListener;
-mod common;
 
 use common::*;
 

@@ -1,7 +1,7 @@
 //! Shape `alpha` cutouts (pbrt-v4): constant and textured, for camera rays,
 //! shadow rays and photons.
 
-mod common;
+use crate::common;
 
 use common::{header, load, render_loaded};
 use lumis_render::load::Overrides;

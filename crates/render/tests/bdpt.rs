@@ -8,7 +8,7 @@
 //! and strategies of one depth rendered alone and unweighted estimate the
 //! same light. Same bits on any thread count.
 
-mod common;
+use crate::common;
 
 use common::*;
 

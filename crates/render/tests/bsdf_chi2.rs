@@ -2,7 +2,7 @@
 //! `sample()` against `pdf()`, consistency of sampled values with `eval()` and
 //! `pdf()`, reciprocity, and the exact behaviour of the smooth (delta) BSDFs.
 
-mod common;
+use crate::common;
 
 use common::chi2::{self, Chi2Config};
 use lumis_math::{sampling::square_to_uniform_sphere, Pcg32, Rgb, Vec2, Vec3};

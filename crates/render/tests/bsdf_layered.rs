@@ -11,7 +11,7 @@
 //!   `max_depth`);
 //! - reciprocity of `eval` within noise.
 
-mod common;
+use crate::common;
 
 use common::chi2::{self, Chi2Config};
 use common::sample_mean_and_se;

@@ -4,7 +4,7 @@
 //! found only by following delta samples) and a rough-coated rough-gold sphere
 //! (proportional sample densities, glossy recursion of the final gather).
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::load::Overrides;

@@ -1,7 +1,7 @@
 //! Bitterli's Cornell box and Veach's MIS scene (pbrt-v4 files) against
 //! Tungsten's converged renders.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::image_io::read_image;

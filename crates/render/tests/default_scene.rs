@@ -2,9 +2,9 @@
 //! `path` at high sample count, compared statistically per block.
 //!
 //! Regenerate the reference (after changing scenes/default.pbrt) with:
-//!   cargo test --release -p lumis-render --test default_scene -- --ignored make_reference
+//!   cargo test --release -p lumis-render --test integration -- --ignored default_scene::make_reference
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
@@ -59,7 +59,7 @@ fn make_reference() {
     let l = load(DEFAULT_SCENE, &overrides());
     let out = render_clamped(&l, REF_SPP, 12345);
     let cmd =
-        "cargo test --release -p lumis-render --test default_scene -- --ignored make_reference";
+        "cargo test --release -p lumis-render --test integration -- --ignored default_scene::make_reference";
     for (name, pixels) in [
         ("default_ref_mean.exr", out.film.mean_image()),
         ("default_ref_var.exr", out.film.variance_image()),

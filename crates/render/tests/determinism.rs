@@ -1,6 +1,6 @@
 //! Same scene, seed and sample count: bit-identical image, whatever the thread count.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::load::{Overrides, DEFAULT_SCENE};

@@ -5,7 +5,7 @@
 //! analytic radiance `a/pi ∫ L cos dω` (importance sampling, MIS and the
 //! light's transform together).
 
-mod common;
+use crate::common;
 
 use common::envmap::*;
 use common::*;

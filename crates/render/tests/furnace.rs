@@ -5,7 +5,7 @@
 //! `Le / (1 - a)` without a limit. Every pixel is an independent unbiased
 //! estimate, so the image mean must match within a few standard errors.
 
-mod common;
+use crate::common;
 
 use common::*;
 

@@ -2,7 +2,7 @@
 //! instanced scene gives the same hits as the same geometry written out
 //! (flattened) in world space.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_math::{Pcg32, Vec3};

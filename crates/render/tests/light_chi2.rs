@@ -2,7 +2,7 @@
 //! `sample_li` returns from a reference point against `pdf_li`, and the
 //! emitted directions of `sample_le` against their density.
 
-mod common;
+use crate::common;
 
 use common::chi2::{self, sidak_alpha, Chi2Config};
 use common::envmap::{lumpy, write_env};

@@ -8,9 +8,9 @@
 //! `path` cannot render.
 //!
 //! Regenerate the committed light-tracer reference with:
-//!   cargo test --release -p lumis-render --test lighttracer -- --ignored make_reference
+//!   cargo test --release -p lumis-render --test integration -- --ignored lighttracer::make_reference
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::image_io::{read_image, write_image, RgbImage};
@@ -181,7 +181,7 @@ fn write_reference(film: lumis_render::film::Film, spp: u32, test: &str, out: &s
         ("lumis:integrator".into(), "lighttracer".into()),
         (
             "lumis:command".into(),
-            format!("cargo test --release -p lumis-render --test lighttracer -- --ignored {test}"),
+            format!("cargo test --release -p lumis-render --test integration -- --ignored lighttracer::{test}"),
         ),
     ];
     write_image(&test_data(out), &img, 0.0).unwrap();

@@ -1,7 +1,7 @@
 //! Loading pbrt-v4's `coateddiffuse` and `coatedconductor`: parameter names,
 //! defaults, the coat-relative conductor constants and located errors.
 
-mod common;
+use crate::common;
 
 use lumis_math::{Rgb, Vec2, Vec3};
 use lumis_render::bsdf::layered::Base;

@@ -2,7 +2,7 @@
 //! and lumis' `"string distribution"` extension (Trowbridge-Reitz or
 //! Beckmann), with located errors.
 
-mod common;
+use crate::common;
 
 use lumis_math::{Vec2, Vec3};
 use lumis_render::bsdf::microfacet::{Microfacet, MicrofacetModel};

@@ -4,7 +4,7 @@
 //! (chromatic), transmittance through random grids by delta tracking, ratio
 //! tracking and quadrature; loading errors; determinism.
 
-mod common;
+use crate::common;
 
 use common::media::{per_channel, sphere_of};
 use common::{assert_close, header, load, render_loaded};

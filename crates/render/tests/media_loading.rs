@@ -1,8 +1,6 @@
 //! Loading pbrt-v4 media: types, presets, interfaces on shapes and the
 //! camera, and located errors and warnings for what is wrong or missing.
 
-mod common;
-
 use lumis_render::load::{load_text, Overrides};
 use lumis_render::media::MediumKind;
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! a glass sphere focusing light into fog (each caustic mode), volumetric
 //! caustic photons actually carrying the beam, thread determinism.
 
-mod common;
+use crate::common;
 
 use common::media::{per_channel, sphere_of};
 use common::{load, render_loaded, test_data};
@@ -17,7 +17,7 @@ const REF_SPP: u32 = 131_072;
 fn make_media_references() {
     let film = fog_glass(&mut Overrides::default(), REF_SPP, 2024);
     let (w, h) = (film.width(), film.height());
-    let cmd = "cargo test --release -p lumis-render --test media_photon -- --ignored make_media_references";
+    let cmd = "cargo test --release -p lumis-render --test integration -- --ignored media_photon::make_media_references";
     for (suffix, px) in [("mean", film.mean_image()), ("var", film.variance_image())] {
         let mut img = RgbImage::new(w, h, px);
         img.metadata = vec![

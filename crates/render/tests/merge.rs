@@ -2,7 +2,7 @@
 //! whole render's film bit for bit; a loaded session pointed at another
 //! job (`Session::set_job`) makes that job's parts.
 
-mod common;
+use crate::common;
 
 use common::render_session;
 use lumis_render::session::{Budget, Merger, Part, RenderJob, Session};

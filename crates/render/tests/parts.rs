@@ -7,8 +7,8 @@
 // A split into one range is one of the splits tested, not a mistaken `Vec`.
 #![allow(clippy::single_range_in_vec_init)]
 
+use crate::common;
 use lumis_render::film::Film;
-mod common;
 
 use lumis_render::integrator::RenderOutcome;
 use lumis_render::session::{merge, Part, RenderJob, Session};

@@ -3,7 +3,7 @@
 //! orientation and channel order of lumis' own image of the same scene
 //! (`tests/data/pbrt-v4-rgb.*`; the scene file says how they were made).
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::image_io::read_image;

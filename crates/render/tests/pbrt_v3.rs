@@ -2,7 +2,7 @@
 //! pbrt-v4 versions of the pbrt book's caustic-glass scene give the same
 //! geometry and the same spot light.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::light::Light;

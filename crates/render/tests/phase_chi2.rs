@@ -1,7 +1,7 @@
 //! Chi-square tests of the phase functions' sampling against their
 //! densities over the sphere (`common/chi2.rs`), for several asymmetries.
 
-mod common;
+use crate::common;
 
 use common::chi2::{self, sidak_alpha, Chi2Config};
 use lumis_math::Vec3;

@@ -6,9 +6,9 @@
 //! count grows, and the three modes must agree with each other.
 //!
 //! Regenerate the references with:
-//!   cargo test -p lumis-render --test photon_consistency -- --ignored make_references
+//!   cargo test -p lumis-render --test integration -- --ignored photon_consistency::make_references
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::film::Film;
@@ -36,7 +36,7 @@ fn make_references() {
         let out = render_loaded(&l, REF_SPP, 2024, 0);
         let (w, h) = (out.film.width(), out.film.height());
         let cmd =
-            "cargo test -p lumis-render --test photon_consistency -- --ignored make_references";
+            "cargo test -p lumis-render --test integration -- --ignored photon_consistency::make_references";
         for (suffix, px) in [
             ("mean", out.film.mean_image()),
             ("var", out.film.variance_image()),

@@ -1,7 +1,7 @@
 //! Photon emission from every light type: the flux of the photons stored at
 //! their first hit equals the light's power reaching the receiver.
 
-mod common;
+use crate::common;
 
 use lumis_math::PI;
 use lumis_render::integrator::photon::trace::{trace_photons, MapKind};

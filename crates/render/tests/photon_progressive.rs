@@ -5,7 +5,7 @@
 //! error and bias keep falling as iterations accumulate, where one map's
 //! stop; and the analytic furnace, also with a caustic in it.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::checkpoint::Checkpoint;

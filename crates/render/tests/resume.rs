@@ -3,7 +3,7 @@
 //! for bit, for `path` and for `photon` (whose maps are rebuilt from the seed).
 //! Also: an injected NaN sample is dropped, counted and located.
 
-mod common;
+use crate::common;
 
 use common::{load, render_until};
 use lumis_render::checkpoint::Checkpoint;

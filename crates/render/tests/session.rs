@@ -2,7 +2,7 @@
 //! before rendering, and an image saved elsewhere (and said where) when its
 //! output folder vanished during the render.
 
-mod common;
+use crate::common;
 
 use common::render_session;
 use lumis_render::session::{Budget, RenderJob, Session};

@@ -1,7 +1,7 @@
 //! The shapes of the scene-loading issue through the whole load: hits
 //! against analytic answers.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_math::Vec3;

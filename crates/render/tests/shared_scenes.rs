@@ -2,7 +2,7 @@
 //! with `path`, and warns about nothing the scene-loading issue says must
 //! work: every warning must be one of the explained exceptions below.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::load::{load_path, Overrides};

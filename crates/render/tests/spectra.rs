@@ -4,7 +4,7 @@
 //! named metals to a per-channel fit. Expected values are computed here
 //! from the spectra, independently of the loader's conversion code.
 
-mod common;
+use crate::common;
 
 use common::{load, mean_and_se, render_loaded};
 use lumis_math::spectrum::{cmf, fresnel_conductor, named, planck, NAMED};

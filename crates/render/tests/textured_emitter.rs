@@ -7,7 +7,7 @@
 //! of the image are compared separately (Z-tests against the pixels' own
 //! variance), so a mirrored or colour-swapped image fails.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_math::{Vec2, Vec3, PI};

@@ -5,7 +5,7 @@
 //! unknown parameters are reported at their location; `ptex` is a located
 //! warning.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_math::{Rgb, Vec3};

@@ -3,7 +3,7 @@
 //! a thin sheet, and `photon` against `path` where light reaches a floor only
 //! by diffuse transmission.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::bsdf::ThinDielectric;

@@ -8,7 +8,7 @@
 //! shrink it. Same bits on any thread count. (That the MIS weights of all
 //! techniques sum to one is `mis_weights.rs`.)
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::load::{load_path, Overrides};

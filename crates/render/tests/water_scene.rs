@@ -1,7 +1,7 @@
 //! The water caustic scene (scenes/water/): it loads without a warning, and
 //! its caustic region renders as bright as its README measured with `path`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use lumis_render::load::{load_path, Overrides};
