@@ -7,6 +7,8 @@
 mod graph;
 mod scan;
 
+mod test_files;
+
 use graph::{cycles, Graph};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
