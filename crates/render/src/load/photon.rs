@@ -73,6 +73,16 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
         }
     };
     s.max_radius = p.get_float("maxradius", s.max_radius)?;
+    s.gather_gain = p.get_float("gathergain", s.gather_gain)?;
+    if !(s.gather_gain > 0.0 && s.gather_gain.is_finite()) {
+        return Err(Diagnostic::error(
+            &p.loc_of("gathergain").unwrap_or(e.loc.clone()),
+            format!(
+                "`gathergain` must be a positive number, found {}",
+                s.gather_gain
+            ),
+        ));
+    }
     s.caustics = choice(
         e,
         "caustics",

@@ -90,7 +90,12 @@ fn trace_camera(
             match f {
                 Flight::Absorbed => return l,
                 Flight::Scattered(p) => {
-                    let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || 0.0);
+                    let alpha = alpha_at(
+                        ctx.s.alpha,
+                        (ctx.alpha_first, ctx.s.gather_gain),
+                        first,
+                        || 0.0,
+                    );
                     let m = medium.expect("a flight scatters in a medium");
                     let wo = -ray.d.normalize();
                     let m2 = ctx.s.gather_rays;
@@ -135,10 +140,15 @@ fn trace_camera(
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
-        let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, first, || {
-            let f = &scene.textures.footprint;
-            f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
-        });
+        let alpha = alpha_at(
+            ctx.s.alpha,
+            (ctx.alpha_first, ctx.s.gather_gain),
+            first,
+            || {
+                let f = &scene.textures.footprint;
+                f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
+            },
+        );
         let m2 = ctx.s.gather_rays;
         l += beta
             * shade(
@@ -177,10 +187,11 @@ fn fresnel_lobes(bsdf: &SurfaceBsdf, wo: Vec3, ns: Vec3) -> Option<[(Rgb, Vec3);
 
 /// `alpha` of `q_1` at a shading point (seed, A.10): from the samples per
 /// pixel at the camera path's first non-delta hit (and, in `footprint` mode,
-/// the area there that the pixel's samples spread over), 1 elsewhere.
+/// the area there that the pixel's samples spread over), times the gather
+/// rays' `gain` there; 1 elsewhere.
 pub(super) fn alpha_at(
     mode: AlphaMode,
-    alpha_first: f32,
+    (alpha_first, gain): (f32, f32),
     first_camera_hit: bool,
     pixel_area: impl FnOnce() -> f32,
 ) -> Alpha {
@@ -188,14 +199,16 @@ pub(super) fn alpha_at(
         return Alpha::ONE;
     }
     match mode {
-        AlphaMode::One => Alpha::ONE,
+        AlphaMode::One => Alpha { gain, ..Alpha::ONE },
         AlphaMode::Spp => Alpha {
             spp: alpha_first,
             pixel_area: 0.0,
+            gain,
         },
         AlphaMode::Footprint => Alpha {
             spp: alpha_first,
             pixel_area: pixel_area(),
+            gain,
         },
     }
 }
@@ -209,7 +222,7 @@ mod tests {
     fn alpha_applies_only_at_the_first_camera_hit() {
         assert_eq!(PhotonSettings::default().alpha, AlphaMode::Footprint);
         let area = || 2e-3;
-        let at = |m, first| alpha_at(m, 64.0, first, area).effective(1e-3);
+        let at = |m, first| alpha_at(m, (64.0, 1.0), first, area).effective(1e-3);
         // The seed's: spp at the first hit, whatever the footprint.
         assert_eq!(at(AlphaMode::Spp, true), 64.0);
         // Footprint twice the disc: rho = 1/3.
@@ -218,6 +231,12 @@ mod tests {
             assert_eq!(at(m, false), 1.0);
         }
         assert_eq!(at(AlphaMode::One, true), 1.0);
+        // The gather rays' gain: at the first hit only, in every mode.
+        for m in [AlphaMode::Spp, AlphaMode::Footprint, AlphaMode::One] {
+            let a = |first| alpha_at(m, (64.0, 3.0), first, area).effective(1e-3);
+            assert!((a(true) - 3.0 * at(m, true)).abs() < 1e-3);
+            assert_eq!(a(false), 1.0);
+        }
     }
 
     /// Following both lobes with their Fresnel weights has the expectation

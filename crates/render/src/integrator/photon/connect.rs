@@ -134,7 +134,9 @@ pub fn weights(
     inv_j: f32,
     q3_of: impl Fn(f32, f32) -> f32,
 ) -> [f32; 3] {
-    let s = ctx.alpha_first.max(1.0);
+    // The connections are a light-side technique, like the map: the gather
+    // rays' gain counts against both.
+    let s = ctx.alpha_first.max(1.0) * ctx.s.gather_gain;
     let q_3 = q3_of(inv_j, s);
     let r3 = (inv_j / s) / (delta_a / alpha);
     mis3(q_1, q_2, q_3, r3, ctx.s.heuristic)
@@ -151,9 +153,12 @@ pub fn weigh(ctx: &PhotonCtx, conns: &[Connection], margin: Vec2) -> Vec<(Vec2, 
         .iter()
         .filter_map(|c| {
             let delta_a = PI * radii.caustic_r2(c.p);
-            let alpha = alpha_at(ctx.s.alpha, ctx.alpha_first, true, || {
-                scene.textures.footprint.pixel_area(c.p, c.ng) * ctx.pixel_spread
-            })
+            let alpha = alpha_at(
+                ctx.s.alpha,
+                (ctx.alpha_first, ctx.s.gather_gain),
+                true,
+                || scene.textures.footprint.pixel_area(c.p, c.ng) * ctx.pixel_spread,
+            )
             .effective(delta_a);
             let inv_j = inv_density(scene, c.p, c.ng, margin);
             let q_1 = photon_q(ctx, c.le, c.cos, delta_a, c.power, alpha);

@@ -93,17 +93,20 @@ impl AlphaMode {
 }
 
 /// `alpha` at a shading point: the pixel's sample count and the area its
-/// samples spread over there (0: unknown, the seed's `alpha = spp`).
+/// samples spread over there (0: unknown, the seed's `alpha = spp`), and
+/// the gather rays' gain (`gathergain`, 1 for the seed's weights).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Alpha {
     pub spp: f32,
     pub pixel_area: f32,
+    pub gain: f32,
 }
 
 impl Alpha {
     pub const ONE: Alpha = Alpha {
         spp: 1.0,
         pixel_area: 0.0,
+        gain: 1.0,
     };
 
     /// `alpha` for a caustic query of disc area `delta_a`. The pixel value
@@ -113,14 +116,18 @@ impl Alpha {
     /// inside one disc, `DeltaA / A_pix` for a large one). The average then
     /// has the variance of `spp / (1 + (spp - 1) rho)` independent estimates,
     /// so the gather rays' `spp` samples stand against that many photon
-    /// estimates: `alpha = 1 + (spp - 1) rho`.
+    /// estimates: `alpha = 1 + (spp - 1) rho`, times `gain`: the balance
+    /// heuristic compares densities, as if every sample were independent,
+    /// while a pixel's Sobol samples can make the gather rays' average many
+    /// times better than that and the photons' hardly (docs/integrators.md,
+    /// "Why the large light resists").
     pub fn effective(&self, delta_a: f32) -> f32 {
         let rho = if self.pixel_area > 0.0 && self.pixel_area.is_finite() && delta_a > 0.0 {
             delta_a / (delta_a + self.pixel_area)
         } else {
             1.0
         };
-        1.0 + (self.spp - 1.0).max(0.0) * rho
+        (1.0 + (self.spp - 1.0).max(0.0) * rho) * self.gain
     }
 }
 
@@ -206,6 +213,7 @@ mod tests {
         let a = |spp: f32, area: f32| Alpha {
             spp,
             pixel_area: area,
+            gain: 1.0,
         };
         // Unknown footprint: the seed's alpha.
         assert_eq!(a(64.0, 0.0).effective(1e-3), 64.0);
@@ -216,6 +224,12 @@ mod tests {
         // A footprint of 1000 discs: close to 1 + 63/1001.
         assert!((a(64.0, 1.0).effective(1e-3) - (1.0 + 63.0 / 1001.0)).abs() < 1e-4);
         assert_eq!(Alpha::ONE.effective(1e-3), 1.0);
+        // The gain multiplies whatever the footprint gives.
+        let g = Alpha {
+            gain: 3.0,
+            ..a(65.0, 1e-3)
+        };
+        assert!((g.effective(1e-3) - 99.0).abs() < 1e-3);
         assert_eq!(AlphaMode::from_name("auto"), Some(AlphaMode::Footprint));
         for m in [AlphaMode::Spp, AlphaMode::Footprint, AlphaMode::One] {
             assert_eq!(AlphaMode::from_name(m.name()), Some(m));
