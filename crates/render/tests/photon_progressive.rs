@@ -363,42 +363,32 @@ fn progressive_furnace_with_a_glass_caustic() {
 /// The gather rays' gain (`gathergain`, 3 by default) moves a caustic's
 /// weight from the photons to the gather rays at the first camera hit; both
 /// sides of the weights use it, so they still sum to one and the caustic
-/// stays unbiased at any gain. A large light over a glass sphere, seen
-/// where its image falls on the floor (the caustic study's
-/// `sphere-large-light`, cropped): there the two techniques' `q` are alike,
-/// so a gain applied on one side only would move the mean by 7-13%.
+/// stays unbiased at any gain. The caustic study's `sphere-large-light`
+/// (a large light over a glass sphere), cropped to where the light's image
+/// falls on the floor: there the two techniques' `q` are alike, so a gain
+/// applied on one side only would move the mean by 7-13%.
 #[test]
 fn gather_gain_keeps_a_large_lights_caustic_unbiased() {
-    let text = r#"Integrator "photon" "integer maxdepth" [ 10 ] "integer photons" [ 2000 ] "integer causticphotons" [ 20000 ]
-Sampler "sobol"
-PixelFilter "box"
-Film "rgb" "integer xresolution" [ 64 ] "integer yresolution" [ 64 ] "float cropwindow" [ 0.36 0.64 0.62 0.8 ]
-LookAt 0 1.9 4.2   0 0.45 0   0 1 0
-Camera "perspective" "float fov" [ 30 ]
-WorldBegin
-AttributeBegin
-  AreaLightSource "diffuse" "rgb L" [ 3 3 3 ]
-  Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-  Shape "trianglemesh" "point3 P" [ -1 3 -1  1 3 -1  1 3 1  -1 3 1 ] "integer indices" [ 0 1 2 0 2 3 ]
-AttributeEnd
-AttributeBegin
-  Material "dielectric" "float eta" [ 1.5 ]
-  Translate 0 0.8 0
-  Shape "sphere" "float radius" [ 0.5 ]
-AttributeEnd
-Material "diffuse" "rgb reflectance" [ 0.8 0.8 0.8 ]
-Shape "trianglemesh" "point3 P" [ -3 0 -3  -3 0 3  3 0 3  3 0 -3 ] "integer indices" [ 0 1 2 0 2 3 ]
-"#;
-    let mut path = Overrides::default();
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/caustics/sphere-large-light.pbrt");
+    let base = || {
+        let mut o = Overrides::default();
+        o.resolution(64, 64)
+            .crop_from([0.36, 0.64, 0.62, 0.8], "test")
+            .integrator_param("integer photons", "2000")
+            .integrator_param("integer causticphotons", "20000");
+        o
+    };
+    let mut path = base();
     path.integrator("path");
-    let l = load(text, &path);
+    let l = load_path(&scene, &path).unwrap();
     let (r, r_se) = region_mean_and_se(&render_loaded(&l, 4096, 3, 0).film, None);
     for gain in [None, Some("1"), Some("30")] {
-        let mut o = Overrides::default();
+        let mut o = base();
         if let Some(g) = gain {
             o.integrator_param("float gathergain", g);
         }
-        let l = load(text, &o);
+        let l = load_path(&scene, &o).unwrap();
         let out = render_loaded(&l, 64, 7, 0);
         assert_eq!(out.photon_stats.unwrap().iterations, 64);
         let (m, se) = region_mean_and_se(&out.film, None);
