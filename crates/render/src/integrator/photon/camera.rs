@@ -90,12 +90,7 @@ fn trace_camera(
             match f {
                 Flight::Absorbed => return l,
                 Flight::Scattered(p) => {
-                    let alpha = alpha_at(
-                        ctx.s.alpha,
-                        (ctx.alpha_first, ctx.s.gather_gain),
-                        first,
-                        || 0.0,
-                    );
+                    let alpha = ctx.alpha(first, || 0.0);
                     let m = medium.expect("a flight scatters in a medium");
                     let wo = -ray.d.normalize();
                     let m2 = ctx.s.gather_rays;
@@ -140,15 +135,10 @@ fn trace_camera(
             ray = spawn_ray(hit.geom.p, hit.geom.ng, bs.wi);
             continue;
         }
-        let alpha = alpha_at(
-            ctx.s.alpha,
-            (ctx.alpha_first, ctx.s.gather_gain),
-            first,
-            || {
-                let f = &scene.textures.footprint;
-                f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
-            },
-        );
+        let alpha = ctx.alpha(first, || {
+            let f = &scene.textures.footprint;
+            f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
+        });
         let m2 = ctx.s.gather_rays;
         l += beta
             * shade(
@@ -185,11 +175,19 @@ fn fresnel_lobes(bsdf: &SurfaceBsdf, wo: Vec3, ns: Vec3) -> Option<[(Rgb, Vec3);
     (!r_trans && t_trans).then_some([(r_w, r_wi), (t_w, t_wi)])
 }
 
+impl PhotonCtx<'_> {
+    /// [`alpha_at`] with this render's mode, first-hit sample count and gain.
+    pub(super) fn alpha(&self, first_camera_hit: bool, pixel_area: impl FnOnce() -> f32) -> Alpha {
+        let first = (self.alpha_first, self.s.gather_gain);
+        alpha_at(self.s.alpha, first, first_camera_hit, pixel_area)
+    }
+}
+
 /// `alpha` of `q_1` at a shading point (seed, A.10): from the samples per
 /// pixel at the camera path's first non-delta hit (and, in `footprint` mode,
 /// the area there that the pixel's samples spread over), times the gather
 /// rays' `gain` there; 1 elsewhere.
-pub(super) fn alpha_at(
+fn alpha_at(
     mode: AlphaMode,
     (alpha_first, gain): (f32, f32),
     first_camera_hit: bool,

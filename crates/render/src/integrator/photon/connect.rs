@@ -24,7 +24,6 @@
 //! one for every path; the lens point of a connection is sampled as the
 //! light tracer samples it.
 
-use super::camera::alpha_at;
 use super::gather::PhotonCtx;
 use super::weights::{mis3, q1};
 use crate::accel::Hit;
@@ -153,13 +152,11 @@ pub fn weigh(ctx: &PhotonCtx, conns: &[Connection], margin: Vec2) -> Vec<(Vec2, 
         .iter()
         .filter_map(|c| {
             let delta_a = PI * radii.caustic_r2(c.p);
-            let alpha = alpha_at(
-                ctx.s.alpha,
-                (ctx.alpha_first, ctx.s.gather_gain),
-                true,
-                || scene.textures.footprint.pixel_area(c.p, c.ng) * ctx.pixel_spread,
-            )
-            .effective(delta_a);
+            let alpha = ctx
+                .alpha(true, || {
+                    scene.textures.footprint.pixel_area(c.p, c.ng) * ctx.pixel_spread
+                })
+                .effective(delta_a);
             let inv_j = inv_density(scene, c.p, c.ng, margin);
             let q_1 = photon_q(ctx, c.le, c.cos, delta_a, c.power, alpha);
             let q3 = |m: f32, s: f32| photon_q(ctx, c.le, c.cos, m, c.power, s);
