@@ -2,7 +2,7 @@
 """Error against time per scene and method from a `lumis study` folder, with
 and without the reference's own noise.
 
-    python3 scripts/study-slopes.py STUDY_DIR [--metric mse|relmse] [--path path] [--refs DIR] [--ref-noise S]
+    python3 scripts/study-slopes.py STUDY_DIR [--over DIR] [--metric mse|relmse] [--path path] [--refs DIR] [--ref-noise S]
 
 A reference rendered by `path` has per-pixel variance of its own, so a
 run's measured error is its true error plus that of the reference:
@@ -18,6 +18,11 @@ The corrected error of every run is MSE - s. Budgets are the runs'
 measured seconds (pbrt-v4's runs are placed at their wall time). Per method
 the table gives the geometric mean over seeds at each budget and the slope
 of log error against log time (ordinary least squares over all runs).
+
+--over DIR adds the runs of another study folder, each replacing the run
+of STUDY_DIR with the same id (scene, setting, budget, seed): a setting
+re-run on its own after a change (e.g. studies/caustics-gain.toml) is read
+beside the other settings' runs it did not change.
 
 Only the standard library; prints Markdown.
 """
@@ -88,6 +93,19 @@ def geo(values):
     return math.exp(sum(math.log(v) for v in values) / len(values))
 
 
+def load_runs(folder):
+    """The run records of a study folder: runs/*.json, or metrics.json (a
+    committed report keeps its records there only)."""
+    records = []
+    for name in sorted(glob.glob(os.path.join(folder, "runs", "*.json"))):
+        with open(name) as f:
+            records.append(json.load(f))
+    if not records and os.path.exists(os.path.join(folder, "metrics.json")):
+        with open(os.path.join(folder, "metrics.json")) as f:
+            records = json.load(f)["runs"]
+    return records
+
+
 def main():
     args = sys.argv[1:]
     if not args:
@@ -101,14 +119,14 @@ def main():
         path_name = args[args.index("--path") + 1]
     refs = args[args.index("--refs") + 1] if "--refs" in args else None
     ref_noise = float(args[args.index("--ref-noise") + 1]) if "--ref-noise" in args else None
-    records = []
-    for name in sorted(glob.glob(os.path.join(folder, "runs", "*.json"))):
-        with open(name) as f:
-            records.append(json.load(f))
-    if not records and os.path.exists(os.path.join(folder, "metrics.json")):
-        # a committed report keeps its records in metrics.json only
-        with open(os.path.join(folder, "metrics.json")) as f:
-            records = json.load(f)["runs"]
+    records = load_runs(folder)
+    if "--over" in args:
+        over = args[args.index("--over") + 1]
+        newer = load_runs(over)
+        if not newer:
+            sys.exit(f"no finished runs in {over}/runs or {over}/metrics.json")
+        ids = {r["id"] for r in newer}
+        records = [r for r in records if r["id"] not in ids] + newer
     runs = sorted(
         (r for r in records if r.get(metric) is not None and r.get("seconds")),
         key=lambda r: r["id"],
