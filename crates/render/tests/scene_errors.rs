@@ -110,3 +110,15 @@ fn photon_counts_out_of_range_are_located_errors() {
     assert!(e.contains("`gatherrays` must be >= 0"), "{e}");
     assert!(load("Integrator \"photon\" \"integer specularsplits\" [ 64 ]\nWorldBegin\n").is_ok());
 }
+
+#[test]
+fn a_gather_gain_that_is_not_positive_is_a_located_error() {
+    for g in ["0", "-2"] {
+        let e = error(&format!(
+            "Integrator \"photon\" \"float gathergain\" [ {g} ]\nWorldBegin\n"
+        ));
+        assert!(e.starts_with("s.pbrt:3:"), "{e}");
+        assert!(e.contains("`gathergain` must be a positive number"), "{e}");
+    }
+    assert!(load("Integrator \"photon\" \"float gathergain\" [ 0.5 ]\nWorldBegin\n").is_ok());
+}
