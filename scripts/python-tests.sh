@@ -34,14 +34,15 @@ fi
 cargo test --workspace --no-run --test cli
 # The wheel with the same compiled library: it cannot be built with
 # `--profile test` (that would build a test harness), so it is built with
-# `dev` at opt-level 3, which are the `test` profile's settings
-# (Cargo.toml), in the same folder (target/debug); python/Cargo.toml turns
-# on the features the test build resolves. Then only PyO3 and the native
-# module are compiled.
+# `dev` at opt-level 3 with line tables only, which are the `test`
+# profile's settings (Cargo.toml), in the same folder (target/debug);
+# python/Cargo.toml turns on the features the test build resolves. Then
+# only PyO3 and the native module are compiled.
 rm -rf target/wheels/python-tests
 log=target/wheels/python-tests.log
 mkdir -p target/wheels
-if ! CARGO_PROFILE_DEV_OPT_LEVEL=3 "$venv/bin/maturin" build --profile dev --strip \
+if ! CARGO_PROFILE_DEV_OPT_LEVEL=3 CARGO_PROFILE_DEV_DEBUG=line-tables-only \
+    "$venv/bin/maturin" build --profile dev --strip \
     --manifest-path python/Cargo.toml --interpreter "$venv/bin/python" \
     --out target/wheels/python-tests >"$log" 2>&1; then
     cat "$log"
