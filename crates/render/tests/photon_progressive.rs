@@ -366,9 +366,12 @@ fn progressive_furnace_with_a_glass_caustic() {
 /// stays unbiased at any gain. The caustic study's `sphere-large-light`
 /// (a large light over a glass sphere), cropped to where the light's image
 /// falls on the floor: there the two techniques' `q` are alike, so a gain
-/// applied on one side only would move the mean by 7-13%.
+/// applied on one side only would move the mean by 7-13%. The gather boost
+/// (`gatherboost`) changes `m_2` point by point, in the weights of every
+/// technique alike (the camera connections' too): unbiased as well, and
+/// the boosted render traces more gather rays.
 #[test]
-fn gather_gain_keeps_a_large_lights_caustic_unbiased() {
+fn gather_gain_and_boost_keep_a_large_lights_caustic_unbiased() {
     let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../scenes/caustics/sphere-large-light.pbrt");
     let base = || {
@@ -383,14 +386,18 @@ fn gather_gain_keeps_a_large_lights_caustic_unbiased() {
     path.integrator("path");
     let l = load_path(&scene, &path).unwrap();
     let (r, r_se) = region_mean_and_se(&render_loaded(&l, 4096, 3, 0).film, None);
-    for gain in [None, Some("1"), Some("30")] {
+    let mut gather_rays = Vec::new();
+    for gain in [None, Some("1"), Some("30"), Some("boost 16")] {
         let mut o = base();
-        if let Some(g) = gain {
-            o.integrator_param("float gathergain", g);
-        }
+        match gain {
+            Some("boost 16") => o.integrator_param("float gatherboost", "16"),
+            Some(g) => o.integrator_param("float gathergain", g),
+            None => &mut o,
+        };
         let l = load_path(&scene, &o).unwrap();
         let out = render_loaded(&l, 64, 7, 0);
         assert_eq!(out.photon_stats.unwrap().iterations, 64);
+        gather_rays.push(out.ray_counts.gather);
         let (m, se) = region_mean_and_se(&out.film, None);
         let err = (m - r) / r;
         let noise = (se * se + r_se * r_se).sqrt() / r;
@@ -404,4 +411,9 @@ fn gather_gain_keeps_a_large_lights_caustic_unbiased() {
             err * 100.0
         );
     }
+    eprintln!("gather rays: {gather_rays:?}");
+    assert!(
+        gather_rays[3] as f64 > 1.5 * gather_rays[0] as f64,
+        "the boost traced {gather_rays:?} gather rays"
+    );
 }

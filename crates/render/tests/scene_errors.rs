@@ -122,3 +122,18 @@ fn a_gather_gain_that_is_not_positive_is_a_located_error() {
     }
     assert!(load("Integrator \"photon\" \"float gathergain\" [ 0.5 ]\nWorldBegin\n").is_ok());
 }
+
+#[test]
+fn a_gather_boost_below_one_or_above_64_is_a_located_error() {
+    for b in ["0.5", "-1", "65"] {
+        let e = error(&format!(
+            "Integrator \"photon\" \"float gatherboost\" [ {b} ]\nWorldBegin\n"
+        ));
+        assert!(e.starts_with("s.pbrt:3:"), "{e}");
+        assert!(
+            e.contains("`gatherboost` must be a number from 1 to 64"),
+            "{e}"
+        );
+    }
+    assert!(load("Integrator \"photon\" \"float gatherboost\" [ 4 ]\nWorldBegin\n").is_ok());
+}

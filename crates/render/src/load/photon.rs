@@ -83,6 +83,16 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
             ),
         ));
     }
+    s.gather_boost = p.get_float("gatherboost", s.gather_boost)?;
+    if !(s.gather_boost >= 1.0 && s.gather_boost <= 64.0) {
+        return Err(Diagnostic::error(
+            &p.loc_of("gatherboost").unwrap_or(e.loc.clone()),
+            format!(
+                "`gatherboost` must be a number from 1 to 64, found {}",
+                s.gather_boost
+            ),
+        ));
+    }
     s.caustics = choice(
         e,
         "caustics",

@@ -139,7 +139,7 @@ fn trace_camera(
             let f = &scene.textures.footprint;
             f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
         });
-        let m2 = ctx.s.gather_rays;
+        let m2 = ctx.gather_rays_at(hit.geom.p);
         l += beta
             * shade(
                 ctx, &hit, &bsdf, wo, medium, alpha, m2, depth, sampler, rays,
@@ -180,6 +180,24 @@ impl PhotonCtx<'_> {
     pub(super) fn alpha(&self, first_camera_hit: bool, pixel_area: impl FnOnce() -> f32) -> Alpha {
         let first = (self.alpha_first, self.s.gather_gain);
         alpha_at(self.s.alpha, first, first_camera_hit, pixel_area)
+    }
+
+    /// `m_2` at a camera path's non-delta hit `p`: `gather_rays`, and in
+    /// the progressive mode up to `gather_boost` times that where caustics
+    /// bring the light (their share of the irradiance there, measured on
+    /// the first iteration's maps). A function of `p` alone, so every
+    /// technique's weights of a path see the same `m_2` (the connections'
+    /// too, `connect::weigh`).
+    pub(super) fn gather_rays_at(&self, p: Vec3) -> u32 {
+        let m2 = self.s.gather_rays;
+        match &self.maps.radii {
+            Some(r) if self.s.gather_boost > 1.0 && m2 > 0 => {
+                // Rounded down: a faint caustic share adds no ray.
+                let extra = (self.s.gather_boost - 1.0) * r.caustic.share_at(p, r.scale2);
+                m2 + (m2 as f32 * extra) as u32
+            }
+            _ => m2,
+        }
     }
 }
 

@@ -41,14 +41,15 @@ pub struct Connection {
     pub l: Rgb,
     /// The photon's point and geometric normal, what its `q_1` needs
     /// (emitted luminance, `cos(theta)` of its direction on the shading
-    /// normal, its power's luminance), and its `q_2` for the camera's
-    /// direction.
+    /// normal, its power's luminance), and the density a gather ray from
+    /// the camera's direction has of the photon's (`q_2` per gather ray:
+    /// their count depends on `p`, [`PhotonCtx::gather_rays_at`]).
     pub p: Vec3,
     pub ng: Vec3,
     pub le: f32,
     pub cos: f32,
     pub power: f32,
-    pub q2: f32,
+    pub p2: f32,
 }
 
 /// `1 / J`: the area at `p` (normal `ng`) per pixel of the film that a
@@ -71,7 +72,7 @@ pub fn inv_density(scene: &Scene, p: Vec3, ng: Vec3, margin: Vec2) -> f32 {
 /// `hit` from `wo`: `power f |cos| W_e / pdf` times the film's pixels (the
 /// photon set is one estimate of the image, as its powers sum to the
 /// emitted flux, while `W_e` integrates to one over the film), if nothing
-/// blocks it. `m2` gather rays give its `q_2`.
+/// blocks it.
 #[allow(clippy::too_many_arguments)]
 pub fn to_camera(
     scene: &Scene,
@@ -79,7 +80,7 @@ pub fn to_camera(
     bsdf: &SurfaceBsdf,
     wo: Vec3,
     (power, le): (Rgb, f32),
-    (margin, m2): (Vec2, u32),
+    margin: Vec2,
     rng: &mut Pcg32,
     rays: &mut u64,
 ) -> Option<Connection> {
@@ -107,7 +108,7 @@ pub fn to_camera(
         le,
         cos: wo.dot(hit.geom.ns),
         power: power.luminance(),
-        q2: super::weights::q2(m2, pdf),
+        p2: pdf,
     })
 }
 
@@ -160,7 +161,8 @@ pub fn weigh(ctx: &PhotonCtx, conns: &[Connection], margin: Vec2) -> Vec<(Vec2, 
             let inv_j = inv_density(scene, c.p, c.ng, margin);
             let q_1 = photon_q(ctx, c.le, c.cos, delta_a, c.power, alpha);
             let q3 = |m: f32, s: f32| photon_q(ctx, c.le, c.cos, m, c.power, s);
-            let w = weights(ctx, (q_1, c.q2), (delta_a, alpha), inv_j, q3)[2];
+            let q_2 = super::weights::q2(ctx.gather_rays_at(c.p), c.p2);
+            let w = weights(ctx, (q_1, q_2), (delta_a, alpha), inv_j, q3)[2];
             (w > 0.0).then_some((c.raster, c.l * w))
         })
         .collect()

@@ -52,6 +52,11 @@ pub struct PhotonSettings {
     /// non-delta camera hit: `alpha` of `q_1` (and `q_3`) times this. 1: the
     /// seed's weights.
     pub gather_gain: f32,
+    /// Progressive: up to this many times `gather_rays` at a camera hit,
+    /// in proportion to the caustics' share of the irradiance there
+    /// measured on the first iteration's maps (`RadiusField::share_at`).
+    /// 1: `gather_rays` everywhere.
+    pub gather_boost: f32,
     /// Camera paths follow both lobes of the first this-many smooth
     /// dielectric interfaces they meet (see `camera.rs`).
     pub specular_splits: u32,
@@ -123,6 +128,7 @@ impl PhotonSettings {
             nearest: 50,
             gather_rays: 16,
             gather_gain: 1.0,
+            gather_boost: 1.0,
             specular_splits: 0,
             max_radius: 0.0,
             caustics: CausticMode::Mis,
@@ -167,6 +173,7 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("string", "heuristic", "heuristic", "balance|power", "MIS heuristic for the caustic weights"),
     spec("string", "alpha", "alpha", "footprint|spp|1", "alpha in q_1 at the first camera hit: `footprint` (the default, also `auto`: samples per pixel discounted by the photon neighbourhoods a pixel reads), `spp` (the seed's: samples per pixel) or `1`"),
     spec("float", "gathergain", "gather-gain", "G", "caustics: alpha of q_1 at the first camera hit times G, trusting the gather rays G times more than their density says (with Sobol samples they can be: a large light seen through glass, 3; docs/integrators.md); 1: the seed's weights"),
+    spec("float", "gatherboost", "gather-boost", "B", "progressive: up to B times the gather rays at a camera hit, in proportion to the caustics' share of the irradiance there (measured on the first iteration's maps); 1: the same count everywhere"),
     spec("string", "kernel", "kernel", "none|cone", "caustic density-estimation kernel"),
     spec("bool", "radiancephotons", "radiance-photons", "true|false", "read the global map through precomputed radiance photons"),
     spec("bool", "aimcaustics", "aim-caustics", "true|false", "emit caustic photons only towards perfectly specular shapes"),

@@ -135,7 +135,7 @@ impl PhotonMaps {
         scene: &Scene,
         s: &PhotonSettings,
         seed: u64,
-        connect: Option<(Vec2, u32)>,
+        connect: Option<Vec2>,
         cancel: &AtomicBool,
     ) -> Option<PhotonMaps> {
         let (mut maps, normals) = Self::trace(scene, s, seed, connect, cancel)?;
@@ -150,7 +150,7 @@ impl PhotonMaps {
         scene: &Scene,
         s: &PhotonSettings,
         seed: u64,
-        connect: Option<(Vec2, u32)>,
+        connect: Option<Vec2>,
         cancel: &AtomicBool,
     ) -> Option<(PhotonMaps, Vec<Vec3>)> {
         let phi: f32 = scene

@@ -27,7 +27,7 @@ use super::map::{dist2, inclusive, KdTree, PhotonMap};
 use super::progressive::Progressive;
 use super::radiance::Points;
 use super::{PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
-use lumis_math::Vec3;
+use lumis_math::{Vec3, PI};
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -40,6 +40,11 @@ pub struct RadiusField {
     tree: KdTree,
     /// Squared radius of each sample, in the tree's leaf order.
     r2: Vec<f32>,
+    /// At each sample (leaf order; empty: not measured), the share of the
+    /// irradiance that caustics the gather rays can find bring, and the
+    /// factor `c` of their weight `w_2 = 1 / (1 + c scale2)` in an
+    /// iteration whose discs are `scale2` times the first's ([`Shares`]).
+    share: Vec<(f32, f32)>,
     /// The largest radius: where no sample lies within it, and the cap.
     max_radius: f32,
 }
@@ -50,6 +55,7 @@ impl RadiusField {
         RadiusField {
             tree: KdTree::build(std::iter::empty(), LEAF),
             r2: Vec::new(),
+            share: Vec::new(),
             max_radius: radius,
         }
     }
@@ -60,19 +66,42 @@ impl RadiusField {
     /// (aimed photons, whose fluxes differ: the median unaimed photons,
     /// all of equal flux, would give).
     pub fn from_map(map: &PhotonMap, k: usize, max_radius: f32, by_flux: bool) -> RadiusField {
+        RadiusField::with_shares(map, k, max_radius, by_flux, None)
+    }
+
+    /// [`from_map`](Self::from_map), and where `shares` is given, what
+    /// [`share_at`](Self::share_at) reads at each sample ([`Shares`]).
+    pub fn with_shares(
+        map: &PhotonMap,
+        k: usize,
+        max_radius: f32,
+        by_flux: bool,
+        shares: Option<Shares>,
+    ) -> RadiusField {
         let n = map.len();
         if n == 0 {
             return RadiusField::constant(max_radius);
         }
         let stride = n.div_ceil(SAMPLES);
         let idx: Vec<u32> = (0..n as u32).step_by(stride).collect();
-        let r2: Vec<f32> = idx
+        let measured: Vec<(f32, (f32, f32))> = idx
             .par_iter()
             .with_min_len(64)
             .map_init(Vec::new, |found, &i| {
-                map.knn(map.photon(i).pos(), k, max_radius, found)
+                let p = map.photon(i).pos();
+                let r2 = map.knn(p, k, max_radius, found);
+                let share = shares.as_ref().map_or((0.0, 0.0), |sh| {
+                    let (flux, k_mean) = sh.gatherable(map, found);
+                    let r2g = sh.global.knn(p, k, sh.global_max, found);
+                    (
+                        caustic_share(flux / r2, total_flux(sh.global, found) / r2g),
+                        k_mean,
+                    )
+                });
+                (r2, share)
             })
             .collect();
+        let (r2, share): (Vec<f32>, Vec<(f32, f32)>) = measured.into_iter().unzip();
         let floor = match by_flux {
             false => {
                 let mut sorted = r2.clone();
@@ -94,11 +123,21 @@ impl RadiusField {
             }
         };
         let r2: Vec<f32> = r2.into_iter().map(|r| r.max(floor)).collect();
+        // `c` of `w_2` over the first iteration's disc, `pi r_0^2`.
+        let share: Vec<(f32, f32)> = share
+            .iter()
+            .zip(&r2)
+            .map(|(&(sc, k_mean), &r2)| (sc, k_mean * PI * r2))
+            .collect();
         let mut tree = KdTree::build(idx.iter().map(|&i| map.photon(i).pos()), LEAF);
         let order = tree.reindex_to_leaf_order();
         RadiusField {
             tree,
             r2: order.iter().map(|&j| r2[j as usize]).collect(),
+            share: match shares {
+                Some(_) => order.iter().map(|&j| share[j as usize]).collect(),
+                None => Vec::new(),
+            },
             max_radius,
         }
     }
@@ -106,6 +145,26 @@ impl RadiusField {
     /// `r_0(p)^2`: the nearest sample's within `max_radius`, else
     /// `max_radius^2`.
     pub fn r2_at(&self, p: Vec3) -> f32 {
+        self.nearest(p)
+            .map_or(self.max_radius * self.max_radius, |i| self.r2[i])
+    }
+
+    /// The share of the irradiance at `p` that the gather rays carry of
+    /// the caustics, in an iteration whose discs are `scale2` times the
+    /// first's (at the nearest sample within `max_radius`; 0 where there is
+    /// none, or it was not measured).
+    pub fn share_at(&self, p: Vec3, scale2: f32) -> f32 {
+        if self.share.is_empty() {
+            return 0.0;
+        }
+        self.nearest(p).map_or(0.0, |i| {
+            let (share, c) = self.share[i];
+            share / (1.0 + c * scale2)
+        })
+    }
+
+    /// The nearest sample within `max_radius`, in leaf order.
+    fn nearest(&self, p: Vec3) -> Option<usize> {
         let q = p.to_array();
         let mut bound = inclusive(self.max_radius * self.max_radius);
         let mut best = None;
@@ -118,7 +177,7 @@ impl RadiusField {
                 }
             }
         });
-        best.map_or(self.max_radius * self.max_radius, |i| self.r2[i])
+        best
     }
 
     /// The largest radius.
@@ -160,17 +219,31 @@ impl RadiusFields {
         p: &Progressive,
     ) -> RadiusFields {
         let aimed = maps.targets.is_some();
+        let global_max = maps.max_radius * GLOBAL_RADIUS_SCALE;
+        // The gather rays' share of the light, measured where they are
+        // boosted by it: with the first iteration's `DeltaA` and `alpha`
+        // (the disc shrinks later, so `w_2` grows).
+        let alpha = (p.iteration_spp.max(1) as f32) * s.gather_gain;
+        let n_over_phi = match aimed {
+            false => maps.caustic.emitted() as f32 / maps.phi,
+            true => 1.0,
+        };
+        let shares = (s.gather_boost > 1.0).then_some(Shares {
+            global: &maps.global,
+            global_max,
+            q_ratio: n_over_phi * PI / (alpha * s.gather_rays.max(1) as f32),
+            aimed,
+        });
         let caustic = match (p.initial_radius > 0.0, aimed) {
             (true, _) => RadiusField::constant(p.initial_radius),
             (false, false) => {
-                RadiusField::from_map(&maps.caustic, s.nearest, maps.max_radius, false)
+                RadiusField::with_shares(&maps.caustic, s.nearest, maps.max_radius, false, shares)
             }
             (false, true) => {
                 let k = flux_equivalent_k(&maps.caustic, s.nearest, maps.phi);
-                RadiusField::from_map(&maps.caustic, k, maps.max_radius, true)
+                RadiusField::with_shares(&maps.caustic, k, maps.max_radius, true, shares)
             }
         };
-        let global_max = maps.max_radius * GLOBAL_RADIUS_SCALE;
         RadiusFields {
             caustic: Arc::new(caustic),
             global: Arc::new(RadiusField::from_map(
@@ -181,6 +254,66 @@ impl RadiusFields {
             )),
             global_points: Arc::new(Points::from_map(&maps.global, normals, RADIANCE_STRIDE)),
         }
+    }
+}
+
+/// The summed power (luminance) of the photons `found`.
+fn total_flux(map: &PhotonMap, found: &[(u32, f32)]) -> f32 {
+    found
+        .iter()
+        .map(|&(i, _)| map.photon(i).power().luminance())
+        .sum()
+}
+
+/// What the gather rays' share of the light at a point is measured with:
+/// the same iteration's global map (read within `global_max`), and the
+/// seed's weights. At a diffuse point a caustic photon's `q_1 / q_2 = N L_e
+/// DeltaA pi / (Phi alpha m_2)` (the cosines cancel), so the gather rays'
+/// weight of its path is `w_2 = 1 / (1 + q_ratio L_e DeltaA)` with
+/// `q_ratio = N pi / (Phi alpha m_2)` (aimed photons: `N / Phi` is each
+/// photon's own `1 / power`, as in their `q_1`). `w_2` is near 1 for a
+/// large dim light seen through glass, 0 for a small bright one and for a
+/// delta light (whose `L_e` is infinite), and grows as the discs shrink.
+/// A sample keeps the caustic irradiance of lights that are not delta
+/// lights over the global irradiance, and `c = q_ratio L_e pi r_0^2`
+/// (flux-weighted over its photons).
+pub struct Shares<'a> {
+    pub global: &'a PhotonMap,
+    pub global_max: f32,
+    pub q_ratio: f32,
+    pub aimed: bool,
+}
+
+impl Shares<'_> {
+    /// The summed power (luminance) of the caustic photons `found` that
+    /// are not from delta lights, and the flux-weighted mean of their
+    /// `q_ratio L_e`.
+    fn gatherable(&self, map: &PhotonMap, found: &[(u32, f32)]) -> (f32, f32) {
+        let (mut flux, mut k_sum) = (0.0f32, 0.0f32);
+        for &(i, _) in found {
+            let ph = map.photon(i);
+            let power = ph.power().luminance();
+            if !ph.le().is_finite() || !(power > 0.0) {
+                continue;
+            }
+            let q_ratio = match self.aimed {
+                false => self.q_ratio,
+                true => self.q_ratio / power,
+            };
+            flux += power;
+            k_sum += power * q_ratio * ph.le();
+        }
+        (flux, if flux > 0.0 { k_sum / flux } else { 0.0 })
+    }
+}
+
+/// `caustic / total` irradiance (both over their discs' areas, up to the
+/// same factor `pi`) in `[0, 1]`: 1 where the global map saw nothing.
+fn caustic_share(caustic: f32, total: f32) -> f32 {
+    match (caustic > 0.0, total > 0.0) {
+        (false, _) => 0.0,
+        (true, false) => 1.0,
+        (true, true) => (caustic / total).min(1.0),
     }
 }
 
@@ -246,6 +379,57 @@ mod tests {
         // Far from every photon: the largest radius.
         assert_eq!(f.r2_at(Vec3::new(100.0, 0.0, 0.0)), 25.0);
         assert_eq!(RadiusField::constant(0.5).r2_at(Vec3::ZERO), 0.25);
+    }
+
+    #[test]
+    fn shares_weigh_caustics_by_the_gather_rays_weight() {
+        assert_eq!(caustic_share(0.0, 1.0), 0.0);
+        assert_eq!(caustic_share(1.0, 0.0), 1.0);
+        assert_eq!(caustic_share(1.0, 4.0), 0.25);
+        assert_eq!(caustic_share(8.0, 4.0), 1.0);
+        // Caustic and global photons on the same lattice, the caustic ones
+        // with twice the power: a caustic share of 1 (clamped); with
+        // `q_ratio L_e = 1 / (pi r_0^2)` (`c = 1`), `w_2 = 1 / 2` in the
+        // first iteration and 1 / 1.1 at a tenth of its disc.
+        let k = 9;
+        let lattice = |power: f32, le: f32| {
+            let mut v = Vec::new();
+            for i in 0..20 {
+                for j in 0..20 {
+                    let p = Vec3::new(i as f32 * 0.01, j as f32 * 0.01, 0.0);
+                    v.push(Photon::new(p, Rgb::splat(power), Vec3::Z, le));
+                }
+            }
+            PhotonMap::build(v, 400)
+        };
+        let global = lattice(1.0, 1.0);
+        let r0_2 = 2e-4; // 9 nearest on the lattice, as above
+        let shares = |le: f32| Shares {
+            global: &global,
+            global_max: 1.0,
+            q_ratio: 1.0 / (PI * r0_2 * le),
+            aimed: false,
+        };
+        let caustic = lattice(2.0, 3.0);
+        let f = RadiusField::with_shares(&caustic, k, 1.0, false, Some(shares(3.0)));
+        let at = Vec3::new(0.1, 0.1, 0.0);
+        assert!(
+            (f.share_at(at, 1.0) - 0.5).abs() < 1e-3,
+            "{}",
+            f.share_at(at, 1.0)
+        );
+        assert!((f.share_at(at, 0.1) - 1.0 / 1.1).abs() < 1e-3);
+        // Far from every sample, or without shares: none.
+        assert_eq!(f.share_at(Vec3::new(5.0, 0.0, 0.0), 1.0), 0.0);
+        assert_eq!(
+            RadiusField::from_map(&caustic, k, 1.0, false).share_at(at, 1.0),
+            0.0
+        );
+        // A delta light's photons (infinite `L_e`): the gather rays cannot
+        // find them.
+        let delta = lattice(2.0, f32::INFINITY);
+        let f = RadiusField::with_shares(&delta, k, 1.0, false, Some(shares(3.0)));
+        assert_eq!(f.share_at(at, 0.01), 0.0);
     }
 
     #[test]

@@ -111,7 +111,7 @@ impl<'a> PhotonRun<'a> {
         }
         let mut s = self.settings.clone();
         (s.global_photons, s.caustic_photons) = (it.global_photons, it.caustic_photons);
-        let connect = self.connect().map(|m| (m, s.gather_rays));
+        let connect = self.connect();
         let trace = |i, connect| {
             let seed = iteration_seed(self.start.seed, i);
             PhotonMaps::trace(self.scene, &s, seed, connect, cancel)

@@ -43,7 +43,7 @@ const CHUNK: u64 = 4096;
 /// Traces `n_emit` photons; gives up (`None`) soon after `cancel` is set:
 /// chunks not yet started are skipped. `connect`: caustic photons are also
 /// connected to the camera, whose film they may reach within that margin
-/// (the filter's radius, pixels), with `q_2` for that many gather rays.
+/// (the filter's radius, pixels).
 #[allow(clippy::too_many_arguments)]
 pub fn trace_photons(
     scene: &Scene,
@@ -52,7 +52,7 @@ pub fn trace_photons(
     seed: u64,
     max_depth: u32,
     targets: Option<&Targets>,
-    connect: Option<(Vec2, u32)>,
+    connect: Option<Vec2>,
     cancel: &AtomicBool,
 ) -> Option<Traced> {
     if n_emit == 0 || scene.light_sampler.is_empty() {
@@ -70,9 +70,8 @@ pub fn trace_photons(
             let mut rays = 0u64;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_emit) {
                 sampler.start_stream(i, 0);
-                let connect = connect.map(|(margin, m2)| Connect {
+                let connect = connect.map(|margin| Connect {
                     margin,
-                    m2,
                     rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
                 });
                 trace_one(
@@ -117,7 +116,6 @@ pub fn trace_photons(
 /// its own, so the photon's path (and the maps) are those without them.
 struct Connect {
     margin: Vec2,
-    m2: u32,
     rng: Pcg32,
 }
 
@@ -253,9 +251,9 @@ fn trace_one(
                         out.photons.push(Photon::new(hit.geom.p, power, wo, le_lum));
                         out.normals.push(n);
                         if let Some(c) = connect.as_mut() {
-                            let at = (c.margin, c.m2);
                             let pl = (power, le_lum);
-                            let conn = to_camera(scene, &hit, &bsdf, wo, pl, at, &mut c.rng, rays);
+                            let m = c.margin;
+                            let conn = to_camera(scene, &hit, &bsdf, wo, pl, m, &mut c.rng, rays);
                             out.connections.extend(conn);
                         }
                     }
