@@ -183,11 +183,13 @@ impl PhotonCtx<'_> {
     }
 
     /// `m_2` at a camera path's non-delta hit `p`: `gather_rays`, and in
-    /// the progressive mode up to `gather_boost` times that where caustics
-    /// bring the light (their share of the irradiance there, measured on
-    /// the first iteration's maps). A function of `p` alone, so every
-    /// technique's weights of a path see the same `m_2` (the connections'
-    /// too, `connect::weigh`).
+    /// the progressive mode up to `gather_boost` times that where the
+    /// gather rays carry the caustics (the irradiance caustics bring there
+    /// times the gather rays' weight of their paths in this iteration:
+    /// `RadiusField::share_at`, measured on the first iteration's maps). A
+    /// function of `p` alone within an iteration, so every technique's
+    /// weights of a path see the same `m_2` (the connections' too,
+    /// `connect::weigh`).
     pub(super) fn gather_rays_at(&self, p: Vec3) -> u32 {
         let m2 = self.s.gather_rays;
         match &self.maps.radii {

@@ -53,9 +53,9 @@ pub struct PhotonSettings {
     /// seed's weights.
     pub gather_gain: f32,
     /// Progressive: up to this many times `gather_rays` at a camera hit,
-    /// in proportion to the caustics' share of the irradiance there
-    /// measured on the first iteration's maps (`RadiusField::share_at`).
-    /// 1: `gather_rays` everywhere.
+    /// in proportion to the share of the irradiance there that the gather
+    /// rays carry of the caustics (`RadiusField::share_at`, measured on the
+    /// first iteration's maps). 1: `gather_rays` everywhere.
     pub gather_boost: f32,
     /// Camera paths follow both lobes of the first this-many smooth
     /// dielectric interfaces they meet (see `camera.rs`).
@@ -173,7 +173,7 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("string", "heuristic", "heuristic", "balance|power", "MIS heuristic for the caustic weights"),
     spec("string", "alpha", "alpha", "footprint|spp|1", "alpha in q_1 at the first camera hit: `footprint` (the default, also `auto`: samples per pixel discounted by the photon neighbourhoods a pixel reads), `spp` (the seed's: samples per pixel) or `1`"),
     spec("float", "gathergain", "gather-gain", "G", "caustics: alpha of q_1 at the first camera hit times G, trusting the gather rays G times more than their density says (with Sobol samples they can be: a large light seen through glass, 3; docs/integrators.md); 1: the seed's weights"),
-    spec("float", "gatherboost", "gather-boost", "B", "progressive: up to B times the gather rays at a camera hit, in proportion to the caustics' share of the irradiance there (measured on the first iteration's maps); 1: the same count everywhere"),
+    spec("float", "gatherboost", "gather-boost", "B", "progressive: up to B times the gather rays at a camera hit, in proportion to the share of the irradiance there that the gather rays carry of the caustics (measured on the first iteration's maps); 1: the same count everywhere"),
     spec("string", "kernel", "kernel", "none|cone", "caustic density-estimation kernel"),
     spec("bool", "radiancephotons", "radiance-photons", "true|false", "read the global map through precomputed radiance photons"),
     spec("bool", "aimcaustics", "aim-caustics", "true|false", "emit caustic photons only towards perfectly specular shapes"),
