@@ -196,7 +196,7 @@ impl RadiusField {
     }
 
     pub fn memory_bytes(&self) -> usize {
-        self.tree.memory_bytes() + self.r2.capacity() * 4
+        self.tree.memory_bytes() + self.r2.capacity() * 4 + self.share.capacity() * 8
     }
 }
 
