@@ -387,13 +387,17 @@ fn gather_gain_and_boost_keep_a_large_lights_caustic_unbiased() {
     let l = load_path(&scene, &path).unwrap();
     let (r, r_se) = region_mean_and_se(&render_loaded(&l, 4096, 3, 0).film, None);
     let mut gather_rays = Vec::new();
-    for gain in [None, Some("1"), Some("30"), Some("boost 16")] {
+    let (gain, boost) = ("float gathergain", "float gatherboost");
+    for param in [
+        None,
+        Some((gain, "1")),
+        Some((gain, "30")),
+        Some((boost, "16")),
+    ] {
         let mut o = base();
-        match gain {
-            Some("boost 16") => o.integrator_param("float gatherboost", "16"),
-            Some(g) => o.integrator_param("float gathergain", g),
-            None => &mut o,
-        };
+        if let Some((name, value)) = param {
+            o.integrator_param(name, value);
+        }
         let l = load_path(&scene, &o).unwrap();
         let out = render_loaded(&l, 64, 7, 0);
         assert_eq!(out.photon_stats.unwrap().iterations, 64);
@@ -402,12 +406,12 @@ fn gather_gain_and_boost_keep_a_large_lights_caustic_unbiased() {
         let err = (m - r) / r;
         let noise = (se * se + r_se * r_se).sqrt() / r;
         eprintln!(
-            "gather gain {gain:?}: {m:.4} ± {se:.4} against path {r:.4} ± {r_se:.4} ({:+.2}%)",
+            "{param:?}: {m:.4} ± {se:.4} against path {r:.4} ± {r_se:.4} ({:+.2}%)",
             err * 100.0
         );
         assert!(
             err.abs() < 0.025 + 4.0 * noise,
-            "gather gain {gain:?}: {:+.2}% off the path reference",
+            "{param:?}: {:+.2}% off the path reference",
             err * 100.0
         );
     }

@@ -139,11 +139,12 @@ fn trace_camera(
             let f = &scene.textures.footprint;
             f.pixel_area(hit.geom.p, hit.geom.ng) * ctx.pixel_spread
         });
-        let m2 = ctx.gather_rays_at(hit.geom.p);
-        l += beta
-            * shade(
-                ctx, &hit, &bsdf, wo, medium, alpha, m2, depth, sampler, rays,
-            );
+        // Progressive: the caustic disc and the gather rays' share here,
+        // from one search of the radius field.
+        let disc = ctx.maps.radii.as_ref().map(|r| r.caustic_at(hit.geom.p));
+        let m2 = ctx.gather_rays(disc.map_or(0.0, |d| d.1));
+        let at = (alpha, m2, disc.map(|d| d.0));
+        l += beta * shade(ctx, &hit, &bsdf, wo, medium, at, depth, sampler, rays);
         // `shade` covers the non-delta part; a BSDF with a delta lobe (a
         // smooth coat) also continues along one sample when it is delta.
         match delta_lobe_sample(&hit, &bsdf, wo, sampler) {
@@ -182,23 +183,20 @@ impl PhotonCtx<'_> {
         alpha_at(self.s.alpha, first, first_camera_hit, pixel_area)
     }
 
-    /// `m_2` at a camera path's non-delta hit `p`: `gather_rays`, and in
-    /// the progressive mode up to `gather_boost` times that where the
-    /// gather rays carry the caustics (the irradiance caustics bring there
-    /// times the gather rays' weight of their paths in this iteration:
-    /// `RadiusField::share_at`, measured on the first iteration's maps). A
-    /// function of `p` alone within an iteration, so every technique's
-    /// weights of a path see the same `m_2` (the connections' too,
-    /// `connect::weigh`).
-    pub(super) fn gather_rays_at(&self, p: Vec3) -> u32 {
+    /// `m_2` at a camera path's non-delta hit where the gather rays carry
+    /// `share` of the light of the caustics (`Radii::caustic_at`, measured
+    /// on the first iteration's maps; 0 with one map): `gather_rays`, and up
+    /// to `gather_boost` times that. The share is a function of the point
+    /// alone within an iteration, so every technique's weights of a path
+    /// see the same `m_2` (the connections' too, `connect::weigh`).
+    pub(super) fn gather_rays(&self, share: f32) -> u32 {
         let m2 = self.s.gather_rays;
-        match &self.maps.radii {
-            Some(r) if self.s.gather_boost > 1.0 && m2 > 0 => {
-                // Rounded down: a faint caustic share adds no ray.
-                let extra = (self.s.gather_boost - 1.0) * r.caustic.share_at(p, r.scale2);
-                m2 + (m2 as f32 * extra) as u32
-            }
-            _ => m2,
+        if self.s.gather_boost > 1.0 && m2 > 0 {
+            // Rounded down: a faint caustic share adds no ray.
+            let extra = (self.s.gather_boost - 1.0) * share;
+            m2 + (m2 as f32 * extra) as u32
+        } else {
+            m2
         }
     }
 }

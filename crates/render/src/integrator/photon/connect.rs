@@ -43,7 +43,7 @@ pub struct Connection {
     /// (emitted luminance, `cos(theta)` of its direction on the shading
     /// normal, its power's luminance), and the density a gather ray from
     /// the camera's direction has of the photon's (`q_2` per gather ray:
-    /// their count depends on `p`, [`PhotonCtx::gather_rays_at`]).
+    /// their count depends on `p`, [`PhotonCtx::gather_rays`]).
     pub p: Vec3,
     pub ng: Vec3,
     pub le: f32,
@@ -152,7 +152,8 @@ pub fn weigh(ctx: &PhotonCtx, conns: &[Connection], margin: Vec2) -> Vec<(Vec2, 
     conns
         .iter()
         .filter_map(|c| {
-            let delta_a = PI * radii.caustic_r2(c.p);
+            let (r2, share) = radii.caustic_at(c.p);
+            let delta_a = PI * r2;
             let alpha = ctx
                 .alpha(true, || {
                     scene.textures.footprint.pixel_area(c.p, c.ng) * ctx.pixel_spread
@@ -161,7 +162,7 @@ pub fn weigh(ctx: &PhotonCtx, conns: &[Connection], margin: Vec2) -> Vec<(Vec2, 
             let inv_j = inv_density(scene, c.p, c.ng, margin);
             let q_1 = photon_q(ctx, c.le, c.cos, delta_a, c.power, alpha);
             let q3 = |m: f32, s: f32| photon_q(ctx, c.le, c.cos, m, c.power, s);
-            let q_2 = super::weights::q2(ctx.gather_rays_at(c.p), c.p2);
+            let q_2 = super::weights::q2(ctx.gather_rays(share), c.p2);
             let w = weights(ctx, (q_1, q_2), (delta_a, alpha), inv_j, q3)[2];
             (w > 0.0).then_some((c.raster, c.l * w))
         })

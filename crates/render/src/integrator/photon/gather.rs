@@ -86,7 +86,9 @@ pub(super) fn delta_lobe_sample(
     Some((weight, spawn_ray(hit.geom.p, hit.geom.ng, bs.wi)))
 }
 
-/// Light leaving non-delta point `x` towards `wo`, excluding its emission.
+/// Light leaving non-delta point `x` towards `wo`, excluding its emission,
+/// with `alpha`, `m2` gather rays and, if the caller has read it, the
+/// caustic disc's squared radius there (else read here).
 #[allow(clippy::too_many_arguments)]
 pub fn shade(
     ctx: &PhotonCtx,
@@ -94,8 +96,7 @@ pub fn shade(
     bsdf: &SurfaceBsdf,
     wo: Vec3,
     medium: Option<u32>,
-    alpha: Alpha,
-    m2: u32,
+    (alpha, m2, caustic_r2): (Alpha, u32, Option<f32>),
     depth: u32,
     sampler: &mut Sampler,
     rays: &mut crate::integrator::RayCounts,
@@ -112,7 +113,7 @@ pub fn shade(
         Some(margin) if depth == 0 => connect::inv_density(scene, x.geom.p, x.geom.ng, margin),
         _ => 0.0,
     };
-    let (lc, delta_a, alpha) = caustic_photons(ctx, x, bsdf, wo, (alpha, inv_j), m2);
+    let (lc, delta_a, alpha) = caustic_photons(ctx, x, bsdf, wo, (alpha, inv_j), m2, caustic_r2);
     l += lc;
     if m2 == 0 {
         return l;
@@ -291,7 +292,18 @@ pub(super) fn trace_gather(
             continue;
         }
         let here = if bsdf.is_glossy() && d < s.max_depth {
-            emitted + shade(ctx, &h, &bsdf, wo, medium, Alpha::ONE, 1, d, sampler, rays)
+            emitted
+                + shade(
+                    ctx,
+                    &h,
+                    &bsdf,
+                    wo,
+                    medium,
+                    (Alpha::ONE, 1, None),
+                    d,
+                    sampler,
+                    rays,
+                )
         } else {
             emitted + global_radiance(ctx, &h, &bsdf, wo)
         };
@@ -345,6 +357,7 @@ fn caustic_photons(
     wo: Vec3,
     (alpha, inv_j): (Alpha, f32),
     m2: u32,
+    caustic_r2: Option<f32>,
 ) -> (Rgb, f32, f32) {
     let map = &ctx.maps.caustic;
     let s = ctx.s;
@@ -355,7 +368,8 @@ fn caustic_photons(
         // (its count varies); otherwise the `nearest` ones.
         let p = x.geom.p;
         let max = ctx.maps.max_radius;
-        let (r2, skip_boundary) = query(ctx, map, p, |r| r.caustic_r2(p), max, &mut found);
+        let r2_of = |r: &super::Radii| caustic_r2.unwrap_or_else(|| r.caustic_r2(p));
+        let (r2, skip_boundary) = query(ctx, map, p, r2_of, max, &mut found);
         let delta_a = PI * r2;
         let alpha = alpha.effective(delta_a);
         if found.is_empty() || r2 <= 0.0 {

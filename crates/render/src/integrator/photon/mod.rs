@@ -54,7 +54,7 @@ pub struct PhotonSettings {
     pub gather_gain: f32,
     /// Progressive: up to this many times `gather_rays` at a camera hit,
     /// in proportion to the share of the irradiance there that the gather
-    /// rays carry of the caustics (`RadiusField::share_at`, measured on the
+    /// rays carry of the caustics (`RadiusField::at`, measured on the
     /// first iteration's maps). 1: `gather_rays` everywhere.
     pub gather_boost: f32,
     /// Camera paths follow both lobes of the first this-many smooth

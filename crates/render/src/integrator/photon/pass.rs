@@ -107,6 +107,15 @@ impl Radii {
         self.caustic.r2_at(p) * self.scale2
     }
 
+    /// [`caustic_r2`](Self::caustic_r2) and, from the same search of the
+    /// field, the share of the irradiance at `p` that the gather rays carry
+    /// of the caustics in this iteration (`RadiusField::at`).
+    #[inline]
+    pub fn caustic_at(&self, p: Vec3) -> (f32, f32) {
+        let (r2, share) = self.caustic.at(p, self.scale2);
+        (r2 * self.scale2, share)
+    }
+
     /// Squared radius of the global estimate at `p`.
     #[inline]
     pub fn global_r2(&self, p: Vec3) -> f32 {

@@ -149,18 +149,21 @@ impl RadiusField {
             .map_or(self.max_radius * self.max_radius, |i| self.r2[i])
     }
 
-    /// The share of the irradiance at `p` that the gather rays carry of
-    /// the caustics, in an iteration whose discs are `scale2` times the
-    /// first's (at the nearest sample within `max_radius`; 0 where there is
-    /// none, or it was not measured).
-    pub fn share_at(&self, p: Vec3, scale2: f32) -> f32 {
-        if self.share.is_empty() {
-            return 0.0;
+    /// [`r2_at`](Self::r2_at) and, from the same sample, the share of the
+    /// irradiance at `p` that the gather rays carry of the caustics in an
+    /// iteration whose discs are `scale2` times the first's (0 where no
+    /// sample lies within `max_radius`, or shares were not measured).
+    pub fn at(&self, p: Vec3, scale2: f32) -> (f32, f32) {
+        match self.nearest(p) {
+            None => (self.max_radius * self.max_radius, 0.0),
+            Some(i) => {
+                let share = self
+                    .share
+                    .get(i)
+                    .map_or(0.0, |&(share, c)| share / (1.0 + c * scale2));
+                (self.r2[i], share)
+            }
         }
-        self.nearest(p).map_or(0.0, |i| {
-            let (share, c) = self.share[i];
-            share / (1.0 + c * scale2)
-        })
     }
 
     /// The nearest sample within `max_radius`, in leaf order.
@@ -413,23 +416,19 @@ mod tests {
         let caustic = lattice(2.0, 3.0);
         let f = RadiusField::with_shares(&caustic, k, 1.0, false, Some(shares(3.0)));
         let at = Vec3::new(0.1, 0.1, 0.0);
-        assert!(
-            (f.share_at(at, 1.0) - 0.5).abs() < 1e-3,
-            "{}",
-            f.share_at(at, 1.0)
-        );
-        assert!((f.share_at(at, 0.1) - 1.0 / 1.1).abs() < 1e-3);
+        assert!((f.at(at, 1.0).1 - 0.5).abs() < 1e-3, "{}", f.at(at, 1.0).1);
+        assert!((f.at(at, 0.1).1 - 1.0 / 1.1).abs() < 1e-3);
         // Far from every sample, or without shares: none.
-        assert_eq!(f.share_at(Vec3::new(5.0, 0.0, 0.0), 1.0), 0.0);
+        assert_eq!(f.at(Vec3::new(5.0, 0.0, 0.0), 1.0).1, 0.0);
         assert_eq!(
-            RadiusField::from_map(&caustic, k, 1.0, false).share_at(at, 1.0),
+            RadiusField::from_map(&caustic, k, 1.0, false).at(at, 1.0).1,
             0.0
         );
         // A delta light's photons (infinite `L_e`): the gather rays cannot
         // find them.
         let delta = lattice(2.0, f32::INFINITY);
         let f = RadiusField::with_shares(&delta, k, 1.0, false, Some(shares(3.0)));
-        assert_eq!(f.share_at(at, 0.01), 0.0);
+        assert_eq!(f.at(at, 0.01).1, 0.0);
     }
 
     #[test]
