@@ -75,23 +75,19 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     s.max_radius = p.get_float("maxradius", s.max_radius)?;
     s.gather_gain = p.get_float("gathergain", s.gather_gain)?;
     if !(s.gather_gain > 0.0 && s.gather_gain.is_finite()) {
-        return Err(Diagnostic::error(
-            &p.loc_of("gathergain").unwrap_or(e.loc.clone()),
-            format!(
-                "`gathergain` must be a positive number, found {}",
-                s.gather_gain
-            ),
-        ));
+        let what = format!(
+            "`gathergain` must be a positive number, found {}",
+            s.gather_gain
+        );
+        return Err(bad(e, "gathergain", what));
     }
     s.gather_boost = p.get_float("gatherboost", s.gather_boost)?;
     if !(s.gather_boost >= 1.0 && s.gather_boost <= 64.0) {
-        return Err(Diagnostic::error(
-            &p.loc_of("gatherboost").unwrap_or(e.loc.clone()),
-            format!(
-                "`gatherboost` must be a number from 1 to 64, found {}",
-                s.gather_boost
-            ),
-        ));
+        let what = format!(
+            "`gatherboost` must be a number from 1 to 64, found {}",
+            s.gather_boost
+        );
+        return Err(bad(e, "gatherboost", what));
     }
     s.caustics = choice(
         e,
@@ -131,13 +127,16 @@ pub fn photon_settings(e: &Entity, max_depth: u32) -> Result<PhotonSettings, Dia
     Ok(s)
 }
 
+/// An error at parameter `name` of `e` (at `e` itself when not given).
+fn bad(e: &Entity, name: &str, what: String) -> Diagnostic {
+    Diagnostic::error(&e.params.loc_of(name).unwrap_or(e.loc.clone()), what)
+}
+
 /// The progressive mode's settings `e` asks for.
 fn progressive(e: &Entity) -> Result<Progressive, Diagnostic> {
     let p = &e.params;
     let d = Progressive::default();
-    let bad = |name: &str, what: String| {
-        Diagnostic::error(&p.loc_of(name).unwrap_or(e.loc.clone()), what)
-    };
+    let bad = |name: &str, what: String| bad(e, name, what);
     let spp = p.get_int("iterationspp", d.iteration_spp as i32)?;
     if spp < 1 {
         return Err(bad(
