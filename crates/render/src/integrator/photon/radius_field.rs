@@ -70,7 +70,7 @@ impl RadiusField {
     }
 
     /// [`from_map`](Self::from_map), and where `shares` is given, what
-    /// [`share_at`](Self::share_at) reads at each sample ([`Shares`]).
+    /// [`at`](Self::at) reads at each sample ([`Shares`]).
     pub fn with_shares(
         map: &PhotonMap,
         k: usize,
