@@ -112,12 +112,17 @@ impl Material {
     /// No BSDF of this material is delta or has a delta lobe, wherever it
     /// is hit (a photon's specular chain ends on it).
     pub fn never_delta(&self) -> bool {
-        matches!(
-            self.kind,
+        match &self.kind {
             MaterialKind::Diffuse(_)
-                | MaterialKind::Phong(_)
-                | MaterialKind::DiffuseTransmission(_)
-        )
+            | MaterialKind::Phong(_)
+            | MaterialKind::DiffuseTransmission(_) => true,
+            // A conductor is delta where its alpha is below `SMOOTH_ALPHA`.
+            MaterialKind::Conductor(m) => m
+                .roughness
+                .const_max_alpha()
+                .is_some_and(|a| a >= crate::bsdf::microfacet::SMOOTH_ALPHA),
+            _ => false,
+        }
     }
 
     pub fn is_interface(&self) -> bool {
