@@ -317,3 +317,72 @@ fn aimed_caustic_photons_from_a_textured_light() {
     assert!(plain.1 < 0.05 * plain.0, "too noisy");
     assert!(aimed.2 > 3 * plain.2, "aiming stores more caustic photons");
 }
+
+/// Caustic photons are not traced where their first ray misses every shape
+/// that can be specular (`Targets::starts`): rays that meet such a shape
+/// first, grazing ones included, are never refused, and most others are.
+#[test]
+fn caustic_photons_are_skipped_only_where_no_specular_shape_can_be_hit() {
+    use lumis_math::rng::Pcg32;
+    use lumis_math::sampling::square_to_uniform_sphere;
+    use lumis_math::{Vec2, Vec3};
+    use lumis_render::geometry::Ray;
+    use lumis_render::integrator::photon::aim::Targets;
+    // A glass sphere, smooth conductor meshes (a tetrahedron, instanced
+    // twice, and another one in the world), a rough conductor and diffuse
+    // walls.
+    let text = "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n\
+        ObjectBegin \"tet\"\nMaterial \"conductor\"\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  0.4 0 0  0 0.4 0  0 0 0.4 ] \"integer indices\" [ 0 2 1  0 1 3  0 3 2  1 2 3 ]\nObjectEnd\n\
+        AttributeBegin\nTranslate -1 0.2 0.5\nObjectInstance \"tet\"\nAttributeEnd\n\
+        AttributeBegin\nTranslate 1 -0.5 0.3\nRotate 40 1 1 0\nObjectInstance \"tet\"\nAttributeEnd\n\
+        AttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate 0.2 0.1 1\nShape \"sphere\" \"float radius\" [ 0.3 ]\nAttributeEnd\n\
+        AttributeBegin\nMaterial \"conductor\"\nTranslate 0.1 1.2 0.8\nRotate 70 0 1 1\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  0.5 0 0  0 0.5 0  0 0 0.5 ] \"integer indices\" [ 0 2 1  0 1 3  0 3 2  1 2 3 ]\nAttributeEnd\n\
+        AttributeBegin\nMaterial \"conductor\" \"float roughness\" [ 0.05 ]\nShape \"trianglemesh\" \"point3 P\" [ -2 -2 0.01  2 -2 0.01  2 2 0.01  -2 2 0.01 ] \"integer indices\" [ 0 1 2 0 2 3 ]\nAttributeEnd\n\
+        Material \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [ -9 -9 0  9 -9 0  9 9 0  -9 9 0  -9 -9 5  9 -9 5 ] \"integer indices\" [ 0 1 2 0 2 3  0 1 5  0 5 4 ]\n";
+    let l = load(text, &Default::default());
+    let scene = &l.scene;
+    let never: Vec<bool> = scene.materials.iter().map(|m| m.never_delta()).collect();
+    // The rough conductor has no delta part; the smooth ones and glass do.
+    assert_eq!(never.iter().filter(|&&n| !n).count(), 3, "{never:?}");
+    let starts = Targets::starts(scene).expect("few specular shapes");
+    // Rays from anywhere in the room towards points near the specular
+    // shapes' surfaces (grazing them) and in random directions.
+    let aims = [
+        (Vec3::new(0.2, 0.1, 1.0), 0.3),
+        (Vec3::new(-0.9, 0.3, 0.6), 0.25),
+        (Vec3::new(1.1, -0.4, 0.4), 0.25),
+        (Vec3::new(0.2, 1.35, 0.95), 0.3),
+    ];
+    let mut rng = Pcg32::new(11, 0);
+    let mut u2 = || Vec2::new(rng.next_f32(), rng.next_f32());
+    let (mut specular, mut skipped, n) = (0, 0, 200_000);
+    for i in 0..n {
+        let o = Vec3::new(4.0, 4.0, 2.4) * (square_to_uniform_sphere(u2()) * 0.999)
+            + Vec3::new(0.0, 0.0, 2.5);
+        let d = match i % 2 {
+            0 => {
+                let (c, r) = aims[i / 2 % aims.len()];
+                c + square_to_uniform_sphere(u2()) * r * (0.9 + 0.2 * u2().x) - o
+            }
+            _ => square_to_uniform_sphere(u2()),
+        };
+        let ray = Ray::new(o, d * (0.5 + u2().x));
+        let can = starts.may_hit(&ray);
+        if let Some(h) = scene.intersect(&ray) {
+            if !never[h.material as usize] {
+                specular += 1;
+                assert!(can, "ray {i} from {o:?} along {d:?} hits a specular shape");
+            }
+        }
+        skipped += usize::from(!can);
+    }
+    eprintln!("{specular} of {n} rays hit a specular shape first; {skipped} skipped");
+    assert!(
+        specular > n / 10,
+        "the rays should often hit the specular shapes"
+    );
+    assert!(
+        skipped > n / 3,
+        "most random rays cannot reach them: {skipped}"
+    );
+}

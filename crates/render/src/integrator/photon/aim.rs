@@ -7,9 +7,11 @@
 //! q_1 uses each photon's own flux (`N L_e cos DeltaA / (Phi alpha)` with
 //! `Phi / N` replaced by the flux the photon carries).
 
+use crate::geometry::Prim;
 use crate::geometry::{offset_ray_origin, transform_box, Aabb, Ray};
 use crate::light::Light;
-use crate::scene::Scene;
+use crate::material::Material;
+use crate::scene::{PrimInfo, Scene};
 use lumis_math::sampling::{
     square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf, UNIFORM_SPHERE_PDF,
 };
@@ -22,43 +24,106 @@ pub struct Targets {
     spheres: Vec<(Vec3, f32)>,
 }
 
+/// Above this many shapes a caustic path can start at, [`Targets::starts`]
+/// gives up: testing every emitted ray against each would cost more than
+/// the traversal it saves.
+const MAX_STARTS: usize = 64;
+
 impl Targets {
+    /// The perfectly specular shapes, which aimed photons head for.
     pub fn from_scene(scene: &Scene) -> Targets {
-        // One box per shape (a whole mesh, a sphere, a disk), in a stable
-        // order; an instanced object's boxes are placed by each instance.
-        let shape_boxes = |prims: &[crate::scene::PrimInfo]| {
+        Targets::of(scene, Material::is_specular, false)
+    }
+
+    /// Every shape whose material can have a delta lobe: a caustic photon
+    /// whose first ray misses them all ends unstored at its first hit, so
+    /// it need not be traced ([`Targets::may_hit`]). None where there are
+    /// more than [`MAX_STARTS`] of them or a bound is not finite.
+    pub fn starts(scene: &Scene) -> Option<Targets> {
+        let t = Targets::of(scene, |m| !m.never_delta(), true);
+        let finite = t
+            .spheres
+            .iter()
+            .all(|(c, r)| c.is_finite() && r.is_finite());
+        (finite && t.spheres.len() <= MAX_STARTS).then_some(t)
+    }
+
+    /// Whether `ray` (of any `tmax`) may meet one of the spheres: false only
+    /// when it misses each by a margin (a thousandth of its radius, and of
+    /// the distance, for rounding), so a ray that hits one of the shapes is
+    /// never refused.
+    pub fn may_hit(&self, ray: &Ray) -> bool {
+        let inv_len2 = 1.0 / ray.d.length_squared();
+        self.spheres.iter().any(|&(c, r)| {
+            let oc = c - ray.o;
+            let d2 = oc.length_squared();
+            let r2 = (r * 1.001) * (r * 1.001) + 1e-6 * d2;
+            if d2 <= r2 {
+                return true;
+            }
+            let t = oc.dot(ray.d);
+            // Ahead of the origin, and its centre within `r` of the line.
+            t > 0.0 && (oc - ray.d * (t * inv_len2)).length_squared() <= r2
+        })
+    }
+
+    /// One sphere per shape (a whole mesh, a sphere, a disk) kept by its
+    /// material, in a stable order: its box's bounding sphere, or with
+    /// `tight` (world shapes) the sphere about the box's centre that
+    /// reaches the farthest vertex of its triangles, the far side of its
+    /// spheres and the farthest corner of its other primitives' boxes (a
+    /// box's bounding sphere has `sqrt 3` times a sphere's radius, three
+    /// times its solid angle). An instanced object's boxes are placed by
+    /// each instance.
+    fn of(scene: &Scene, keep: impl Fn(&Material) -> bool, tight: bool) -> Targets {
+        let kept = |prims: &'_ [PrimInfo]| -> Vec<PrimInfo> {
+            prims
+                .iter()
+                .filter(|p| keep(&scene.materials[p.material as usize]))
+                .copied()
+                .collect()
+        };
+        let shape_boxes = |prims: &[PrimInfo]| {
             let mut boxes: BTreeMap<(u8, u32), Aabb> = BTreeMap::new();
             for p in prims {
-                if !scene.materials[p.material as usize].is_specular() {
-                    continue;
-                }
                 let b = boxes.entry(p.prim.shape()).or_insert(Aabb::EMPTY);
                 *b = b.union(&scene.shapes.bounds(p.prim));
             }
-            boxes.into_values().collect::<Vec<Aabb>>()
+            boxes
         };
-        let mut boxes = shape_boxes(&scene.world.prims);
+        let world = kept(&scene.world.prims);
+        let world_boxes = shape_boxes(&world);
+        let mut reach: BTreeMap<(u8, u32), f32> = BTreeMap::new();
+        for p in world.iter().filter(|_| tight) {
+            let key = p.prim.shape();
+            let c = world_boxes[&key].center();
+            let far = farthest(scene, p.prim, c);
+            let e = reach.entry(key).or_insert(0.0);
+            *e = e.max(far);
+        }
+        let mut spheres: Vec<(Vec3, f32)> = world_boxes
+            .iter()
+            .map(|(key, b)| {
+                let (c, r) = b.bounding_sphere();
+                (c, reach.get(key).map_or(r, |&far| far.min(r)))
+            })
+            .collect();
         let objects: Vec<Vec<Aabb>> = scene
             .instances
             .objects
             .iter()
-            .map(|o| shape_boxes(&o.prims))
+            .map(|o| shape_boxes(&kept(&o.prims)).into_values().collect())
             .collect();
         for inst in &scene.instances.instances {
             let xf = &inst.world_from_object;
-            boxes.extend(
+            spheres.extend(
                 objects[inst.object as usize]
                     .iter()
-                    .map(|b| transform_box(xf, b)),
+                    .map(|b| transform_box(xf, b).bounding_sphere()),
             );
         }
-        Targets {
-            spheres: boxes
-                .iter()
-                .map(|b| b.bounding_sphere())
-                .filter(|s| s.1 > 0.0)
-                .collect(),
-        }
+        spheres.retain(|s| s.1 > 0.0);
+        Targets { spheres }
     }
 
     pub fn is_empty(&self) -> bool {
@@ -100,6 +165,31 @@ impl Targets {
         }
         p / n
     }
+}
+
+/// The distance from `c` to the farthest point of primitive `prim`, or a
+/// bound of it: its vertices, a sphere's far side, its box's corners.
+fn farthest(scene: &Scene, prim: Prim, c: Vec3) -> f32 {
+    let shapes = &scene.shapes;
+    if let Some(v) = shapes.triangle_vertices(prim) {
+        return v.iter().map(|v| (*v - c).length()).fold(0.0, f32::max);
+    }
+    if let Prim::Sphere(i) = prim {
+        let s = &shapes.spheres[i as usize];
+        return (s.center - c).length() + s.world_radius;
+    }
+    let b = shapes.bounds(prim);
+    (0..8)
+        .map(|k| {
+            let pick = |bit: usize, lo: f32, hi: f32| if k >> bit & 1 == 0 { lo } else { hi };
+            let v = Vec3::new(
+                pick(0, b.min.x, b.max.x),
+                pick(1, b.min.y, b.max.y),
+                pick(2, b.min.z, b.max.z),
+            );
+            (v - c).length()
+        })
+        .fold(0.0, f32::max)
 }
 
 /// An aimed emission: the ray, the flux it carries divided by its density

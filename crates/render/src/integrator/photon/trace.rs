@@ -58,6 +58,11 @@ pub fn trace_photons(
     if n_emit == 0 || scene.light_sampler.is_empty() {
         return Some(Traced::default());
     }
+    // Caustic photons that cannot reach a specular shape are not traced.
+    let starts = match kind {
+        MapKind::Caustic if !scene.has_media() => Targets::starts(scene),
+        _ => None,
+    };
     let chunks = n_emit.div_ceil(CHUNK);
     let parts: Vec<Traced> = (0..chunks)
         .into_par_iter()
@@ -78,7 +83,7 @@ pub fn trace_photons(
                     scene,
                     n_emit,
                     (kind, max_depth),
-                    targets,
+                    (targets, starts.as_ref()),
                     connect,
                     &mut sampler,
                     &mut out,
@@ -124,7 +129,7 @@ fn trace_one(
     scene: &Scene,
     n_emit: u64,
     (kind, max_depth): (MapKind, u32),
-    targets: Option<&Targets>,
+    (targets, starts): (Option<&Targets>, Option<&Targets>),
     mut connect: Option<Connect>,
     sampler: &mut Sampler,
     out: &mut Traced,
@@ -181,8 +186,12 @@ fn trace_one(
     'bounce: for depth in 0..=max_depth {
         *rays += 1;
         // A caustic photon ends unstored where its first hit has no
-        // specular part: there its hit's geometry is not needed.
+        // specular part: there its hit's geometry is not needed, and where
+        // its ray misses every shape that has one, nor is the hit.
         let mut hit = if kind == MapKind::Caustic && depth == 0 && !scene.has_media() {
+            if starts.is_some_and(|t| !t.may_hit(&ray)) {
+                return;
+            }
             match scene.intersect_unless(&ray, Material::never_delta) {
                 Some(None) => return,
                 found => found.flatten(),
