@@ -1,6 +1,6 @@
 //! Sampling points on shapes, by area and by solid angle from a reference point.
 
-use super::triangle::triangle_point;
+use super::triangle::{barycentric_point, triangle_point};
 use super::{Prim, Shapes};
 use lumis_math::sampling::{square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf};
 use lumis_math::{safe_sqrt, Frame, Vec2, Vec3};
@@ -11,6 +11,47 @@ pub struct ShapePoint {
     pub p: Vec3,
     pub n: Vec3,
     pub pdf: f32,
+}
+
+/// A triangle without vertex normals, ready to be sampled by area many
+/// times (an area light's photons): its corners, normal and density,
+/// computed once. [`FlatTriangle::sample`] gives [`sample_area`]'s points
+/// bit for bit.
+#[derive(Clone, Copy, Debug)]
+pub struct FlatTriangle {
+    corners: [Vec3; 3],
+    n: Vec3,
+    pdf: f32,
+}
+
+impl FlatTriangle {
+    /// None unless `prim` is a triangle of a mesh without normals.
+    pub fn new(shapes: &Shapes, prim: Prim) -> Option<FlatTriangle> {
+        let Prim::Triangle { mesh, tri } = prim else {
+            return None;
+        };
+        let m = &shapes.meshes[mesh as usize];
+        if m.normals.is_some() {
+            return None;
+        }
+        // Without vertex normals the normal is the same at every point.
+        let (_, n) = triangle_point(m, tri, 1.0 / 3.0, 1.0 / 3.0);
+        Some(FlatTriangle {
+            corners: m.vertices(tri),
+            n,
+            pdf: 1.0 / m.area(tri),
+        })
+    }
+
+    #[inline]
+    pub fn sample(&self, u: Vec2) -> ShapePoint {
+        let (b0, b1) = lumis_math::sampling::square_to_uniform_triangle(u);
+        ShapePoint {
+            p: barycentric_point(self.corners, b1, 1.0 - b0 - b1),
+            n: self.n,
+            pdf: self.pdf,
+        }
+    }
 }
 
 /// Uniform point by area; `pdf` per unit area.
@@ -128,4 +169,43 @@ pub fn pdf_solid_angle(shapes: &Shapes, prim: Prim, p_ref: Vec3, p: Vec3, n: Vec
         return 0.0;
     }
     dist2 / (cos * shapes.area(prim))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::TriangleMesh;
+
+    #[test]
+    fn flat_triangles_sample_the_points_of_sample_area() {
+        let mesh = |flip: bool, normals: Option<Vec<Vec3>>| TriangleMesh {
+            positions: vec![
+                Vec3::new(0.3, -1.0, 2.0),
+                Vec3::new(1.7, 0.2, 1.1),
+                Vec3::new(-0.4, 0.9, 0.35),
+            ],
+            normals,
+            uvs: None,
+            indices: vec![0, 1, 2],
+            flip_normals: flip,
+        };
+        let shapes = Shapes {
+            meshes: vec![
+                mesh(false, None),
+                mesh(true, None),
+                mesh(false, Some(vec![Vec3::Z; 3])),
+            ],
+            ..Shapes::default()
+        };
+        let prim = |mesh| Prim::Triangle { mesh, tri: 0 };
+        assert!(FlatTriangle::new(&shapes, prim(2)).is_none(), "vertex normals vary");
+        for m in 0..2 {
+            let flat = FlatTriangle::new(&shapes, prim(m)).unwrap();
+            for i in 0..1000u32 {
+                let u = Vec2::new((i as f32 * 0.618_034).fract(), (i as f32 + 0.5) / 1000.0);
+                let (a, b) = (flat.sample(u), sample_area(&shapes, prim(m), u));
+                assert_eq!((a.p, a.n, a.pdf), (b.p, b.n, b.pdf), "mesh {m}, u {u:?}");
+            }
+        }
+    }
 }

@@ -145,9 +145,17 @@ pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> Sur
 /// needs no more).
 pub fn triangle_point(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> (Vec3, Vec3) {
     let (idx, [p0, p1, p2], b0) = corners(mesh, tri, b1, b2);
-    let p = b0 * p0 + b1 * p1 + b2 * p2;
+    let p = barycentric_point([p0, p1, p2], b1, b2);
     let ng = (p0 - p2).cross(p1 - p2).normalize_or_zero();
     (p, oriented_normals(mesh, idx, [b0, b1, b2], ng).0)
+}
+
+/// The point at barycentrics (`b1`, `b2`) of corners `p`, as
+/// [`triangle_point`] computes it.
+#[inline]
+pub fn barycentric_point([p0, p1, p2]: [Vec3; 3], b1: f32, b2: f32) -> Vec3 {
+    let b0 = 1.0 - b1 - b2;
+    b0 * p0 + b1 * p1 + b2 * p2
 }
 
 /// Triangle `tri`'s vertex indices and positions, and the barycentric

@@ -3,7 +3,7 @@
 
 use super::area_texture::TexturedEmission;
 use super::{LeSample, LiSample};
-use crate::geometry::sample::{pdf_solid_angle, sample_area, sample_solid_angle};
+use crate::geometry::sample::{pdf_solid_angle, sample_area, sample_solid_angle, FlatTriangle};
 use crate::geometry::square_map::{square_to_surface, surface_to_square};
 use crate::geometry::{offset_ray_origin, Prim, Ray, Shapes};
 use lumis_math::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
@@ -18,6 +18,8 @@ pub struct AreaLight {
     pub two_sided: bool,
     /// The image and this primitive's sampling density over it.
     pub texture: Option<Box<TexturedEmission>>,
+    /// A flat triangle's sampling data (`FlatTriangle::new`), else None.
+    pub flat: Option<FlatTriangle>,
 }
 
 /// A point on the light with its surface parameters and area density.
@@ -49,7 +51,10 @@ impl AreaLight {
     pub fn sample_point(&self, shapes: &Shapes, u: Vec2) -> LightPoint {
         match &self.texture {
             None => {
-                let sp = sample_area(shapes, self.prim, u);
+                let sp = match &self.flat {
+                    Some(f) => f.sample(u),
+                    None => sample_area(shapes, self.prim, u),
+                };
                 LightPoint {
                     p: sp.p,
                     n: sp.n,

@@ -8,6 +8,7 @@
 
 use super::spectrum::light_rgb;
 use super::Warnings;
+use crate::geometry::sample::FlatTriangle;
 use crate::geometry::Prim;
 use crate::light::area_texture::texel_coverage;
 use crate::light::{AreaLight, EmissionImage, TexturedEmission};
@@ -69,6 +70,7 @@ pub fn area_lights(
             prim,
             lemit,
             two_sided,
+            flat: FlatTriangle::new(shapes, prim),
             texture: image.as_ref().map(|img| {
                 Box::new(TexturedEmission::build(
                     img.clone(),
