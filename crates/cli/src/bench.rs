@@ -6,6 +6,7 @@ use crate::measure::{peak_memory_mib, single_thread, time_it};
 use anyhow::Result;
 use lumis_math::Vec3;
 use lumis_render::accel::bench::{bumpy_sphere, inward_rays, mesh_bounds, random_rays, MeshAccel};
+use lumis_render::integrator::photon::aim::Aims;
 use lumis_render::integrator::photon::map::PhotonMap;
 use lumis_render::integrator::photon::PhotonMaps;
 use lumis_render::integrator::{render, RenderOutcome};
@@ -118,7 +119,8 @@ pub fn run(a: BenchArgs) -> Result<()> {
         .map_err(|d| anyhow::anyhow!("{d}"))?;
     let ps = l.options.integrator.photon().expect("photon");
     let never = std::sync::atomic::AtomicBool::new(false);
-    let maps = PhotonMaps::build(&l.scene, ps, 0, None, &never).expect("not cancelled");
+    let aims = Aims::new(&l.scene, ps.aim_caustics);
+    let maps = PhotonMaps::build(&l.scene, ps, 0, None, &aims, &never).expect("not cancelled");
     let emitted = (ps.global_photons + ps.caustic_photons) as f64;
     let st = &maps.stats;
     outln!(

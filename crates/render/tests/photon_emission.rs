@@ -4,6 +4,7 @@
 use crate::common;
 
 use lumis_math::PI;
+use lumis_render::integrator::photon::aim::{Aims, Targets};
 use lumis_render::integrator::photon::trace::{trace_photons, MapKind};
 use std::sync::atomic::AtomicBool;
 
@@ -17,7 +18,8 @@ const N: u64 = 200_000;
 fn first_hit_flux(world: &str) -> f64 {
     let text = format!("Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n{world}\n");
     let l = load(&text, &Default::default());
-    let t = trace_photons(&l.scene, N, MapKind::Global, 5, 0, None, None, &NEVER).unwrap();
+    let none = Aims::default();
+    let t = trace_photons(&l.scene, N, MapKind::Global, 5, 0, &none, None, &NEVER).unwrap();
     t.photons.iter().map(|p| p.power().luminance() as f64).sum()
 }
 
@@ -279,7 +281,6 @@ fn textured_photon_origins_follow_the_image() {
 /// (a Z-test between the two sums), many more photons stored when aimed.
 #[test]
 fn aimed_caustic_photons_from_a_textured_light() {
-    use lumis_render::integrator::photon::aim::Targets;
     let path = image("ph-aim.exr", 2, 1, &[A, B]);
     let text = format!(
         "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\nAttributeBegin\nTranslate 0 0 2\nAreaLightSource \"diffuse\" \"string filename\" \"{}\"\nMaterial \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\nShape \"trianglemesh\" \"point3 P\" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ] \"integer indices\" [ 0 2 1 0 3 2 ] \"point2 uv\" [ 0 0  1 0  1 1  0 1 ]\nAttributeEnd\nAttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate 0.3 0 1\nShape \"sphere\" \"float radius\" [ 0.3 ]\nAttributeEnd\nMaterial \"diffuse\" \"rgb reflectance\" [ 0 0 0 ]\nShape \"trianglemesh\" \"point3 P\" [ -9 -9 0  9 -9 0  9 9 0  -9 9 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n",
@@ -292,7 +293,12 @@ fn aimed_caustic_photons_from_a_textured_light() {
     let sums: Vec<(f64, f64, usize)> = [None, Some(&targets)]
         .into_iter()
         .map(|t| {
-            let tr = trace_photons(&l.scene, n, MapKind::Caustic, 7, 5, t, None, &NEVER).unwrap();
+            let aims = Aims {
+                aim: t.cloned(),
+                starts: Targets::starts(&l.scene),
+            };
+            let tr =
+                trace_photons(&l.scene, n, MapKind::Caustic, 7, 5, &aims, None, &NEVER).unwrap();
             let p: Vec<f64> = tr
                 .photons
                 .iter()
@@ -327,7 +333,6 @@ fn caustic_photons_are_skipped_only_where_no_specular_shape_can_be_hit() {
     use lumis_math::sampling::square_to_uniform_sphere;
     use lumis_math::{Vec2, Vec3};
     use lumis_render::geometry::Ray;
-    use lumis_render::integrator::photon::aim::Targets;
     // A glass sphere, smooth conductor meshes (a tetrahedron, instanced
     // twice, and another one in the world), a rough conductor and diffuse
     // walls.

@@ -198,7 +198,10 @@ mod tests {
             ..Shapes::default()
         };
         let prim = |mesh| Prim::Triangle { mesh, tri: 0 };
-        assert!(FlatTriangle::new(&shapes, prim(2)).is_none(), "vertex normals vary");
+        assert!(
+            FlatTriangle::new(&shapes, prim(2)).is_none(),
+            "vertex normals vary"
+        );
         for m in 0..2 {
             let flat = FlatTriangle::new(&shapes, prim(m)).unwrap();
             for i in 0..1000u32 {

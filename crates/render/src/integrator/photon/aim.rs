@@ -18,6 +18,29 @@ use lumis_math::sampling::{
 use lumis_math::{Frame, Rgb, Vec2, Vec3};
 use std::collections::BTreeMap;
 
+/// What a render's caustic photons head for (`aimcaustics`) and what
+/// skips those that cannot reach a specular shape: found once per render,
+/// since both read every primitive of the scene.
+#[derive(Clone, Debug, Default)]
+pub struct Aims {
+    pub aim: Option<Targets>,
+    pub starts: Option<Targets>,
+}
+
+impl Aims {
+    pub fn new(scene: &Scene, aim_caustics: bool) -> Aims {
+        Aims {
+            aim: aim_caustics
+                .then(|| Targets::from_scene(scene))
+                .filter(|t| !t.is_empty()),
+            starts: match scene.has_media() {
+                true => None,
+                false => Targets::starts(scene),
+            },
+        }
+    }
+}
+
 /// Bounding spheres of the specular shapes.
 #[derive(Clone, Debug, Default)]
 pub struct Targets {

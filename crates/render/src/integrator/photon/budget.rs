@@ -16,6 +16,7 @@
 //! ordinary fixed-count one: the counts and the iteration count it reached
 //! reproduce it exactly without a time budget.
 
+use super::aim::Aims;
 use super::camera;
 use super::gather::PhotonCtx;
 use super::progressive::iteration_seed;
@@ -77,6 +78,7 @@ pub fn choose_counts(
     share: f64,
     iteration_spp: u32,
     render: &Start,
+    aims: &Aims,
     cancel: &AtomicBool,
 ) -> Option<(u64, u64)> {
     let (crop, seed) = (render.crop, render.seed);
@@ -91,7 +93,7 @@ pub fn choose_counts(
         probe.global_photons = (s.global_photons as f64 * f).ceil() as u64;
         probe.caustic_photons = (s.caustic_photons as f64 * f).ceil() as u64;
         let t = Instant::now();
-        let maps = PhotonMaps::build(scene, &probe, probe_seed, None, cancel)?;
+        let maps = PhotonMaps::build(scene, &probe, probe_seed, None, aims, cancel)?;
         Some((t.elapsed().as_secs_f64(), maps))
     };
     let mut f = 1.0 / 256.0;

@@ -145,9 +145,10 @@ impl PhotonMaps {
         s: &PhotonSettings,
         seed: u64,
         connect: Option<Vec2>,
+        aims: &aim::Aims,
         cancel: &AtomicBool,
     ) -> Option<PhotonMaps> {
-        let (mut maps, normals) = Self::trace(scene, s, seed, connect, cancel)?;
+        let (mut maps, normals) = Self::trace(scene, s, seed, connect, aims, cancel)?;
         maps.finish(s, &normals, None);
         Some(maps)
     }
@@ -160,6 +161,7 @@ impl PhotonMaps {
         s: &PhotonSettings,
         seed: u64,
         connect: Option<Vec2>,
+        aims: &aim::Aims,
         cancel: &AtomicBool,
     ) -> Option<(PhotonMaps, Vec<Vec3>)> {
         let phi: f32 = scene
@@ -179,19 +181,17 @@ impl PhotonMaps {
             trace::MapKind::Global,
             seed,
             s.max_depth,
-            None,
+            aims,
             None,
             cancel,
         )?;
-        let targets =
-            Some(aim::Targets::from_scene(scene)).filter(|t| s.aim_caustics && !t.is_empty());
         let c = trace::trace_photons(
             scene,
             s.caustic_photons,
             trace::MapKind::Caustic,
             seed ^ 0x5eed,
             s.max_depth,
-            targets.as_ref(),
+            aims,
             connect,
             cancel,
         )?;
@@ -216,7 +216,7 @@ impl PhotonMaps {
             radiance: None,
             phi,
             max_radius,
-            targets,
+            targets: aims.aim.clone(),
             radii: None,
             connections: c.connections,
             splats: Vec::new(),

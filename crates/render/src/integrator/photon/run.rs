@@ -8,6 +8,7 @@
 //! iteration: the previous maps are freed first, so memory stays at one
 //! iteration's maps, and `alpha` is the iteration's samples per pixel.
 
+use super::aim::Aims;
 use super::budget::choose_counts;
 use super::camera;
 use super::connect;
@@ -39,6 +40,8 @@ pub struct PhotonRun<'a> {
     photon_time: Duration,
     /// Progressive: every point's initial radii (from iteration 0).
     fields: Option<RadiusFields>,
+    /// What the caustic photons of every pass aim at and are skipped by.
+    aims: Aims,
 }
 
 impl<'a> PhotonRun<'a> {
@@ -68,6 +71,7 @@ impl<'a> PhotonRun<'a> {
             totals: PhotonStats::default(),
             photon_time: Duration::ZERO,
             fields: None,
+            aims: Aims::new(scene, settings.aim_caustics),
         }
     }
 
@@ -78,7 +82,8 @@ impl<'a> PhotonRun<'a> {
             return self.begin_iteration(cancel);
         }
         if self.maps.is_none() {
-            self.maps = PhotonMaps::build(self.scene, self.settings, self.start.seed, None, cancel);
+            let (scene, s, seed) = (self.scene, self.settings, self.start.seed);
+            self.maps = PhotonMaps::build(scene, s, seed, None, &self.aims, cancel);
         }
         self.maps.is_some()
     }
@@ -114,7 +119,7 @@ impl<'a> PhotonRun<'a> {
         let connect = self.connect();
         let trace = |i, connect| {
             let seed = iteration_seed(self.start.seed, i);
-            PhotonMaps::trace(self.scene, &s, seed, connect, cancel)
+            PhotonMaps::trace(self.scene, &s, seed, connect, &self.aims, cancel)
         };
         let Some((mut maps, normals)) = trace(it.index, connect) else {
             return false;
@@ -193,7 +198,8 @@ impl<'a> PhotonRun<'a> {
         }
         let st = &self.start;
         let share = s.progressive.map_or(0.0, |p| p.photon_share) as f64;
-        choose_counts(self.scene, s, share, self.iteration_spp(), st, cancel)
+        let spp = self.iteration_spp();
+        choose_counts(self.scene, s, share, spp, st, &self.aims, cancel)
     }
 
     #[inline]

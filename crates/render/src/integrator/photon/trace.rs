@@ -2,7 +2,7 @@
 //! draws its random numbers from a stream keyed by `i` alone, and chunks are
 //! concatenated in order).
 
-use super::aim::{aimed_emission, Targets};
+use super::aim::{aimed_emission, Aims, Targets};
 use super::connect::{to_camera, Connection};
 use super::photon::Photon;
 use crate::bsdf::TransportMode;
@@ -41,9 +41,10 @@ pub struct Traced {
 const CHUNK: u64 = 4096;
 
 /// Traces `n_emit` photons; gives up (`None`) soon after `cancel` is set:
-/// chunks not yet started are skipped. `connect`: caustic photons are also
-/// connected to the camera, whose film they may reach within that margin
-/// (the filter's radius, pixels).
+/// chunks not yet started are skipped. Caustic photons are aimed by
+/// `aims.aim` and skipped by `aims.starts` when those are given.
+/// `connect`: caustic photons are also connected to the camera, whose film
+/// they may reach within that margin (the filter's radius, pixels).
 #[allow(clippy::too_many_arguments)]
 pub fn trace_photons(
     scene: &Scene,
@@ -51,17 +52,16 @@ pub fn trace_photons(
     kind: MapKind,
     seed: u64,
     max_depth: u32,
-    targets: Option<&Targets>,
+    aims: &Aims,
     connect: Option<Vec2>,
     cancel: &AtomicBool,
 ) -> Option<Traced> {
     if n_emit == 0 || scene.light_sampler.is_empty() {
         return Some(Traced::default());
     }
-    // Caustic photons that cannot reach a specular shape are not traced.
-    let starts = match kind {
-        MapKind::Caustic if !scene.has_media() => Targets::starts(scene),
-        _ => None,
+    let (targets, starts) = match kind {
+        MapKind::Caustic => (aims.aim.as_ref(), aims.starts.as_ref()),
+        MapKind::Global => (None, None),
     };
     let chunks = n_emit.div_ceil(CHUNK);
     let parts: Vec<Traced> = (0..chunks)
@@ -83,7 +83,7 @@ pub fn trace_photons(
                     scene,
                     n_emit,
                     (kind, max_depth),
-                    (targets, starts.as_ref()),
+                    (targets, starts),
                     connect,
                     &mut sampler,
                     &mut out,
