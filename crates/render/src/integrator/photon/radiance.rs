@@ -13,6 +13,7 @@
 //! bias of about one photon per disc that grows as the discs shrink.
 
 use super::map::{dist2, inclusive, irradiance_knn, irradiance_within, KdTree, PhotonMap};
+use super::radius_field::RadiusField;
 use super::Radii;
 use lumis_math::{Rgb, Vec3};
 use rayon::prelude::*;
@@ -31,6 +32,10 @@ pub struct Points {
     tree: KdTree,
     pos: Vec<Vec3>,
     normals: Vec<Vec3>,
+    /// Progressive iterations: each point's initial squared disc radius
+    /// (the global radius field's there; read once per render, not once
+    /// per iteration). Empty otherwise.
+    r0_2: Vec<f32>,
 }
 
 impl Points {
@@ -50,7 +55,15 @@ impl Points {
                 .iter()
                 .map(|&j| normals[map.original_index(at(j)) as usize].normalize_or_zero())
                 .collect(),
+            r0_2: Vec::new(),
         }
+    }
+
+    /// [`Points::from_map`] with each point's initial squared disc radius
+    /// read from the global radius field.
+    pub fn with_radii(mut self, field: &RadiusField) -> Points {
+        self.r0_2 = self.pos.iter().map(|&p| field.r2_at(p)).collect();
+        self
     }
 
     pub fn len(&self) -> usize {
@@ -62,7 +75,9 @@ impl Points {
     }
 
     pub fn memory_bytes(&self) -> usize {
-        self.tree.memory_bytes() + (self.pos.capacity() + self.normals.capacity()) * 12
+        self.tree.memory_bytes()
+            + (self.pos.capacity() + self.normals.capacity()) * 12
+            + self.r0_2.capacity() * 4
     }
 }
 
@@ -88,7 +103,7 @@ impl RadiancePhotons {
         max_radius: f32,
     ) -> RadiancePhotons {
         let points = Arc::new(Points::from_map(map, normals, stride));
-        let irradiance = par_map(&points, |p, n, scratch| {
+        let irradiance = par_map(&points, |_, p, n, scratch| {
             irradiance_knn(map, p, n, k, max_radius, scratch).0
         });
         RadiancePhotons {
@@ -98,12 +113,14 @@ impl RadiancePhotons {
         }
     }
 
-    /// Irradiance at `points` from every photon of `map` within the
-    /// iteration's global radius there (progressive iterations).
+    /// Irradiance at `points` (made [`Points::with_radii`]) from every
+    /// photon of `map` within the iteration's global radius there
+    /// (progressive iterations): `radii.global_r2` at each point.
     pub fn fixed(map: &PhotonMap, points: Arc<Points>, radii: &Radii) -> RadiancePhotons {
-        let r2: Vec<f32> = points.pos.iter().map(|&p| radii.global_r2(p)).collect();
-        let irradiance = par_map(&points, |p, n, scratch| {
-            irradiance_within(map, p, n, radii.global_r2(p).sqrt(), scratch)
+        assert_eq!(points.r0_2.len(), points.len(), "points made with_radii");
+        let r2: Vec<f32> = points.r0_2.iter().map(|&r| r * radii.scale2).collect();
+        let irradiance = par_map(&points, |i, p, n, scratch| {
+            irradiance_within(map, p, n, r2[i].sqrt(), scratch)
         });
         RadiancePhotons {
             points,
@@ -156,17 +173,17 @@ impl RadiancePhotons {
     }
 }
 
-/// `f(position, normal, scratch)` at every point, in parallel, in order.
+/// `f(index, position, normal, scratch)` at every point, in parallel, in order.
 fn par_map(
     points: &Points,
-    f: impl Fn(Vec3, Vec3, &mut Vec<(u32, f32)>) -> Rgb + Sync,
+    f: impl Fn(usize, Vec3, Vec3, &mut Vec<(u32, f32)>) -> Rgb + Sync,
 ) -> Vec<Rgb> {
     let mut out = Vec::with_capacity(points.len());
     (0..points.len())
         .into_par_iter()
         .with_min_len(256)
         .map_init(Vec::new, |scratch, i| {
-            f(points.pos[i], points.normals[i], scratch)
+            f(i, points.pos[i], points.normals[i], scratch)
         })
         .collect_into_vec(&mut out);
     out

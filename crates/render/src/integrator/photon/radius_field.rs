@@ -247,15 +247,12 @@ impl RadiusFields {
                 RadiusField::with_shares(&maps.caustic, k, maps.max_radius, true, shares)
             }
         };
+        let global = RadiusField::from_map(&maps.global, s.nearest, global_max, false);
+        let points = Points::from_map(&maps.global, normals, RADIANCE_STRIDE).with_radii(&global);
         RadiusFields {
             caustic: Arc::new(caustic),
-            global: Arc::new(RadiusField::from_map(
-                &maps.global,
-                s.nearest,
-                global_max,
-                false,
-            )),
-            global_points: Arc::new(Points::from_map(&maps.global, normals, RADIANCE_STRIDE)),
+            global: Arc::new(global),
+            global_points: Arc::new(points),
         }
     }
 }
