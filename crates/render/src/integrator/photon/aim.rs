@@ -56,7 +56,9 @@ const MAX_STARTS: usize = 16;
 impl Targets {
     /// The perfectly specular shapes, which aimed photons head for.
     pub fn from_scene(scene: &Scene) -> Targets {
-        Targets::of(scene, Material::is_specular, false)
+        let mut t = Targets::of(scene, Material::is_specular, false);
+        t.spheres.retain(|s| s.1 > 0.0);
+        t
     }
 
     /// Every shape whose material can have a delta lobe: a caustic photon
@@ -64,11 +66,13 @@ impl Targets {
     /// it need not be traced ([`Targets::may_hit`]). None where there are
     /// more than [`MAX_STARTS`] of them or a bound is not finite.
     pub fn starts(scene: &Scene) -> Option<Targets> {
-        let t = Targets::of(scene, |m| !m.never_delta(), true);
+        let mut t = Targets::of(scene, |m| !m.never_delta(), true);
         let finite = t
             .spheres
             .iter()
             .all(|(c, r)| c.is_finite() && r.is_finite());
+        // Empty shapes (a point's box) cannot be hit.
+        t.spheres.retain(|s| s.1 > 0.0);
         (finite && t.spheres.len() <= MAX_STARTS).then_some(t)
     }
 
@@ -98,7 +102,7 @@ impl Targets {
     /// spheres and the farthest corner of its other primitives' boxes (a
     /// box's bounding sphere has `sqrt 3` times a sphere's radius, three
     /// times its solid angle). An instanced object's boxes are placed by
-    /// each instance.
+    /// each instance. Empty and non-finite ones are left for the caller.
     fn of(scene: &Scene, keep: impl Fn(&Material) -> bool, tight: bool) -> Targets {
         let kept = |prims: &'_ [PrimInfo]| -> Vec<PrimInfo> {
             prims
@@ -146,7 +150,6 @@ impl Targets {
                     .map(|b| transform_box(xf, b).bounding_sphere()),
             );
         }
-        spheres.retain(|s| s.1 > 0.0);
         Targets { spheres }
     }
 
