@@ -111,29 +111,26 @@ fn photon_counts_out_of_range_are_located_errors() {
     assert!(load("Integrator \"photon\" \"integer specularsplits\" [ 64 ]\nWorldBegin\n").is_ok());
 }
 
+/// A photon float parameter's values `bad` are errors located at the
+/// parameter that say `message`; `good` loads.
+fn float_param_is_checked(name: &str, bad: &[&str], good: &str, message: &str) {
+    let scene = |v: &str| format!("Integrator \"photon\" \"float {name}\" [ {v} ]\nWorldBegin\n");
+    for v in bad {
+        let e = error(&scene(v));
+        assert!(e.starts_with("s.pbrt:3:"), "{e}");
+        assert!(e.contains(message), "{e}");
+    }
+    assert!(load(&scene(good)).is_ok());
+}
+
 #[test]
 fn a_gather_gain_that_is_not_positive_is_a_located_error() {
-    for g in ["0", "-2"] {
-        let e = error(&format!(
-            "Integrator \"photon\" \"float gathergain\" [ {g} ]\nWorldBegin\n"
-        ));
-        assert!(e.starts_with("s.pbrt:3:"), "{e}");
-        assert!(e.contains("`gathergain` must be a positive number"), "{e}");
-    }
-    assert!(load("Integrator \"photon\" \"float gathergain\" [ 0.5 ]\nWorldBegin\n").is_ok());
+    let message = "`gathergain` must be a positive number";
+    float_param_is_checked("gathergain", &["0", "-2"], "0.5", message);
 }
 
 #[test]
 fn a_gather_boost_below_one_or_above_64_is_a_located_error() {
-    for b in ["0.5", "-1", "65"] {
-        let e = error(&format!(
-            "Integrator \"photon\" \"float gatherboost\" [ {b} ]\nWorldBegin\n"
-        ));
-        assert!(e.starts_with("s.pbrt:3:"), "{e}");
-        assert!(
-            e.contains("`gatherboost` must be a number from 1 to 64"),
-            "{e}"
-        );
-    }
-    assert!(load("Integrator \"photon\" \"float gatherboost\" [ 4 ]\nWorldBegin\n").is_ok());
+    let message = "`gatherboost` must be a number from 1 to 64";
+    float_param_is_checked("gatherboost", &["0.5", "-1", "65"], "4", message);
 }

@@ -86,9 +86,10 @@ impl Points {
 pub struct RadiancePhotons {
     points: Arc<Points>,
     irradiance: Vec<Rgb>,
-    /// Progressive iterations: each point's squared disc radius, which also
-    /// bounds the distance at which it may be read (empty otherwise).
-    r2: Vec<f32>,
+    /// Progressive iterations: the iteration's `scale2`; each point's
+    /// squared disc radius, `r0_2 scale2`, also bounds the distance at
+    /// which it may be read (None otherwise).
+    scale2: Option<f32>,
 }
 
 impl RadiancePhotons {
@@ -109,7 +110,7 @@ impl RadiancePhotons {
         RadiancePhotons {
             points,
             irradiance,
-            r2: Vec::new(),
+            scale2: None,
         }
     }
 
@@ -118,14 +119,14 @@ impl RadiancePhotons {
     /// (progressive iterations): `radii.global_r2` at each point.
     pub fn fixed(map: &PhotonMap, points: Arc<Points>, radii: &Radii) -> RadiancePhotons {
         assert_eq!(points.r0_2.len(), points.len(), "points made with_radii");
-        let r2: Vec<f32> = points.r0_2.iter().map(|&r| r * radii.scale2).collect();
+        let scale2 = radii.scale2;
         let irradiance = par_map(&points, |i, p, n, scratch| {
-            irradiance_within(map, p, n, r2[i].sqrt(), scratch)
+            irradiance_within(map, p, n, (points.r0_2[i] * scale2).sqrt(), scratch)
         });
         RadiancePhotons {
             points,
             irradiance,
-            r2,
+            scale2: Some(scale2),
         }
     }
 
@@ -146,7 +147,7 @@ impl RadiancePhotons {
                 let d2 = dist2(pt, q);
                 if d2 < *bound {
                     let i = pt[3].to_bits() as usize;
-                    let inside = self.r2.get(i).is_none_or(|&r2| d2 <= r2);
+                    let inside = self.scale2.is_none_or(|s| d2 <= self.points.r0_2[i] * s);
                     if inside && normals[i].dot(n) > NORMAL_DOT {
                         *bound = d2;
                         best = Some(i);
@@ -167,9 +168,7 @@ impl RadiancePhotons {
 
     /// Bytes of this iteration's values and of the points they share.
     pub fn memory_bytes(&self) -> usize {
-        self.points.memory_bytes()
-            + self.irradiance.capacity() * std::mem::size_of::<Rgb>()
-            + self.r2.capacity() * 4
+        self.points.memory_bytes() + self.irradiance.capacity() * std::mem::size_of::<Rgb>()
     }
 }
 
