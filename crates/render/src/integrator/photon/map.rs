@@ -119,8 +119,14 @@ impl KdTree {
                 let d = nd.dim as usize;
                 let diff = q[d] - nd.split;
                 let near = 2 * node + (diff >= 0.0) as usize;
-                let mut far_off = off;
-                far_off[d] = diff;
+                // `off` with its `d`-th offset replaced, by selects: an
+                // indexed store into the array and a wider load back stalled
+                // store forwarding (a fifth of a lookup's time in profiles).
+                let far_off = [
+                    if d == 0 { diff } else { off[0] },
+                    if d == 1 { diff } else { off[1] },
+                    if d == 2 { diff } else { off[2] },
+                ];
                 let rd =
                     far_off[0] * far_off[0] + far_off[1] * far_off[1] + far_off[2] * far_off[2];
                 if rd < *bound {
