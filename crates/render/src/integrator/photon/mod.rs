@@ -90,12 +90,7 @@ pub struct PhotonSettings {
 /// defaults", says how they were measured): per iteration, photons for the
 /// global and the caustic map, and gather rays per camera sample.
 pub const PROGRESSIVE_PHOTONS: (u64, u64) = (PROG_GLOBAL, PROG_CAUSTIC);
-/// One global photon to 25 caustic ones (the time rule scales both by one
-/// factor): a fifth of the global photons of 1:5 left the caustic set's
-/// error at 0.88-1.0 at 30 and 120 s (the large light and the ring the
-/// most) for the iterations their time buys (docs/integrators.md, "Fewer
-/// global photons").
-const PROG_GLOBAL: u64 = 8_000;
+const PROG_GLOBAL: u64 = 40_000;
 const PROG_CAUSTIC: u64 = 200_000;
 const PROG_GATHER_RAYS: u32 = 4;
 /// The Sobol sampler lowers the gather rays' caustic error per iteration
