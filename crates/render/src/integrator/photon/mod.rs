@@ -189,7 +189,7 @@ pub const PARAMS: &[ParamSpec] = &[
     spec("float", "shrink", "shrink", "A", "progressive: radius sequence r_{i+1}^2 = r_i^2 (i + A) / (i + 1), 0 < A <= 1"),
     spec("float", "initialradius", "initial-radius", "R", "progressive: caustic radius of the first iteration (0: the median k-NN radius of the first iteration's caustic photons)"),
     spec("integer", "iterations", "iterations", "N", "progressive: iterations to render (samples per pixel = N x iterationspp; 0: from the sample count)"),
-    spec("float", "photonshare", "photon-share", "F", "progressive with a time budget: share of each iteration's time spent tracing photons, which sets the photon counts when they are not given (0: keep the counts)"),
+    spec("float", "photonshare", "photon-share", "F", "progressive with a time budget: share of each iteration's time spent tracing photons, which sets the photon counts when they are not given, the global map then getting a fifth of its count (0: keep the counts)"),
 ];
 
 /// Bytes per stored photon plus kd-tree overhead, and per global photon the
