@@ -1,9 +1,10 @@
 //! The progressive mode's time rule: under a time budget, when the photon
 //! counts are not set, the renderer chooses them so that photon tracing
 //! takes a fixed share of every iteration's time (`photonshare`, by default
-//! a quarter), then traces a fifth of the global photons that share gives. Photon tracing and camera samples attack different errors
-//! (the photon maps' variance and bias; the gather rays', the direct light's
-//! and the pixel's), and the balance that minimises the sum is a property of
+//! a quarter), then traces a fifth of the global photons that share gives.
+//! Photon tracing and camera samples attack different errors (the photon
+//! maps' variance and bias; the gather rays', the direct light's and the
+//! pixel's), and the balance that minimises the sum is a property of
 //! the scene's cost, which only timing can see: a scene whose photons mostly
 //! miss the specular objects gets many cheap ones, a scene of heavy camera
 //! paths more photons per sample.
