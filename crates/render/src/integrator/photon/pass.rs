@@ -234,7 +234,7 @@ impl PhotonMaps {
             Some(r) => Some(RadiancePhotons::fixed(
                 &self.global,
                 r.global_points.clone(),
-                r,
+                r.scale2,
             )),
             None => Some(RadiancePhotons::build(
                 &self.global,

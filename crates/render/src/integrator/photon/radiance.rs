@@ -14,7 +14,6 @@
 
 use super::map::{dist2, inclusive, irradiance_knn, irradiance_within, KdTree, PhotonMap};
 use super::radius_field::RadiusField;
-use super::Radii;
 use lumis_math::{Rgb, Vec3};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -116,10 +115,10 @@ impl RadiancePhotons {
 
     /// Irradiance at `points` (made [`Points::with_radii`]) from every
     /// photon of `map` within the iteration's global radius there
-    /// (progressive iterations): `radii.global_r2` at each point.
-    pub fn fixed(map: &PhotonMap, points: Arc<Points>, radii: &Radii) -> RadiancePhotons {
+    /// (progressive iterations): `r0_2 scale2` at each point, what
+    /// `Radii::global_r2` gives there.
+    pub fn fixed(map: &PhotonMap, points: Arc<Points>, scale2: f32) -> RadiancePhotons {
         assert_eq!(points.r0_2.len(), points.len(), "points made with_radii");
-        let scale2 = radii.scale2;
         let irradiance = par_map(&points, |i, p, n, scratch| {
             irradiance_within(map, p, n, (points.r0_2[i] * scale2).sqrt(), scratch)
         });
