@@ -6,9 +6,12 @@ use lumis_render::image_io::{write_image, RgbImage};
 use std::path::PathBuf;
 
 /// Writes `f(x, y)` as a `w` × `h` image named `name` (extension picks the
-/// format) in a per-process temporary folder; returns its path.
+/// format) in cargo's temporary folder for tests (under `target/`, so runs
+/// leave nothing in the system's); returns its path. One folder for every
+/// run: a name always holds the same image, and each write is a rename of
+/// a whole file, so concurrent test processes cannot tear one.
 pub fn write_env(name: &str, w: u32, h: u32, f: impl Fn(u32, u32) -> Rgb) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lumis-envmaps-{}", std::process::id()));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("envmaps");
     std::fs::create_dir_all(&dir).unwrap();
     let mut data = Vec::with_capacity((w * h * 3) as usize);
     for y in 0..h {
