@@ -106,8 +106,15 @@ fn queries_match_brute_force() {
             }
             let points: Vec<Vec3> = map.photons().iter().map(Photon::pos).collect();
             for _ in 0..200 {
-                let q = if n > 0 && rng.next_f32() < 0.5 {
+                let pick = rng.next_f32();
+                let q = if n > 0 && pick < 0.4 {
                     points[rng.next_below(n as u32) as usize]
+                } else if n > 0 && pick < 0.7 {
+                    // A point moved along one axis: queries just off a
+                    // point set's surface (its plane, its clusters, its box).
+                    let mut a = points[rng.next_below(n as u32) as usize].to_array();
+                    a[rng.next_below(3) as usize] += 0.6 * rng.next_f32() - 0.3;
+                    Vec3::from_array(a)
                 } else {
                     v3(&mut rng) * 1.2 - 0.1
                 };
