@@ -16,6 +16,13 @@ pub struct Sphere {
     pub zmin: f32,
     pub zmax: f32,
     pub phi_max: f32,
+    /// A whole sphere whose transform is a similarity (rotation, uniform
+    /// scale, translation): rays meet it in world space, at `center` and
+    /// `world_radius`, without being transformed. The roots are the same
+    /// `t`s (a similarity scales the quadratic's three coefficients alike).
+    world_space: bool,
+    /// `acos(zmin / radius)`, `acos(zmax / radius)`: where `v` is 0 and 1.
+    theta_z: (f32, f32),
 }
 
 impl Sphere {
@@ -37,7 +44,7 @@ impl Sphere {
             .determinant()
             .abs()
             .cbrt();
-        Sphere {
+        let mut sphere = Sphere {
             object_to_world,
             radius,
             flip_normals: reverse ^ object_to_world.swaps_handedness(),
@@ -46,7 +53,15 @@ impl Sphere {
             zmin: zmin.min(zmax).clamp(-radius, radius),
             zmax: zmin.max(zmax).clamp(-radius, radius),
             phi_max: phimax_deg.clamp(0.0, 360.0).to_radians(),
-        }
+            world_space: false,
+            theta_z: (0.0, 0.0),
+        };
+        sphere.world_space = !sphere.is_partial() && is_similarity(&object_to_world);
+        sphere.theta_z = (
+            (sphere.zmin / radius).clamp(-1.0, 1.0).acos(),
+            (sphere.zmax / radius).clamp(-1.0, 1.0).acos(),
+        );
+        sphere
     }
 
     /// Whether any part is cut away.
@@ -90,29 +105,14 @@ impl Sphere {
     /// hit on a cut-away part is skipped for the far root.
     #[inline]
     pub fn intersect(&self, ray: &Ray, tmax: f32) -> Option<f32> {
+        if self.world_space {
+            let (t0, t1) = roots(ray.o - self.center, ray.d, self.world_radius)?;
+            return [t0, t1].into_iter().find(|&t| t > 0.0 && t < tmax);
+        }
         let inv = &self.object_to_world.inv;
         let o = inv.transform_point3(ray.o);
         let d = inv.transform_vector3(ray.d);
-        // Numerically robust quadratic (Hearn & Baker / pbrt-v4 discriminant form).
-        let a = d.length_squared();
-        let b = 2.0 * d.dot(o);
-        let c = o.length_squared() - self.radius * self.radius;
-        let v = o - (b / (2.0 * a)) * d;
-        let len = v.length();
-        let disc = 4.0 * a * (self.radius + len) * (self.radius - len);
-        if disc < 0.0 {
-            return None;
-        }
-        let root = disc.sqrt();
-        let q = if b < 0.0 {
-            -0.5 * (b - root)
-        } else {
-            -0.5 * (b + root)
-        };
-        let (mut t0, mut t1) = (q / a, c / q);
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
+        let (t0, t1) = roots(o, d, self.radius)?;
         let partial = self.is_partial();
         [t0, t1]
             .into_iter()
@@ -140,10 +140,7 @@ impl Sphere {
         let phi = phi_of(po);
         let theta = (po.z / self.radius).clamp(-1.0, 1.0).acos();
         // pbrt's parameterisation (v = 0 at zmin), for cut spheres too.
-        let (tz0, tz1) = (
-            (self.zmin / self.radius).clamp(-1.0, 1.0).acos(),
-            (self.zmax / self.radius).clamp(-1.0, 1.0).acos(),
-        );
+        let (tz0, tz1) = self.theta_z;
         let phi_max = if self.is_partial() {
             self.phi_max
         } else {
@@ -181,6 +178,53 @@ impl Sphere {
         let g = self.geometry_object(po);
         (g.p, g.ng)
     }
+}
+
+/// The roots `t0 <= t1` of `|o + t d| = r`, if real: the numerically
+/// robust quadratic (Hearn & Baker, pbrt-v4's discriminant form).
+#[inline]
+fn roots(o: Vec3, d: Vec3, r: f32) -> Option<(f32, f32)> {
+    let a = d.length_squared();
+    let b = 2.0 * d.dot(o);
+    let c = o.length_squared() - r * r;
+    let v = o - (b / (2.0 * a)) * d;
+    let len = v.length();
+    let disc = 4.0 * a * (r + len) * (r - len);
+    if disc < 0.0 {
+        return None;
+    }
+    let root = disc.sqrt();
+    let q = if b < 0.0 {
+        -0.5 * (b - root)
+    } else {
+        -0.5 * (b + root)
+    };
+    let (t0, t1) = (q / a, c / q);
+    Some(if t0 > t1 { (t1, t0) } else { (t0, t1) })
+}
+
+/// Whether `xf` is affine with a linear part that is a rotation (or
+/// reflection) times a uniform scale, to a relative `1e-5`.
+fn is_similarity(xf: &Transform) -> bool {
+    let m = xf.m;
+    let row3 = m.row(3);
+    if row3 != lumis_math::Vec4::new(0.0, 0.0, 0.0, 1.0) {
+        return false;
+    }
+    let cols = [
+        m.x_axis.truncate(),
+        m.y_axis.truncate(),
+        m.z_axis.truncate(),
+    ];
+    let s2 = cols[0].length_squared();
+    let tol = 1e-5 * s2;
+    s2 > 0.0
+        && s2.is_finite()
+        && (cols[1].length_squared() - s2).abs() <= tol
+        && (cols[2].length_squared() - s2).abs() <= tol
+        && cols[0].dot(cols[1]).abs() <= tol
+        && cols[0].dot(cols[2]).abs() <= tol
+        && cols[1].dot(cols[2]).abs() <= tol
 }
 
 #[cfg(test)]
@@ -243,5 +287,69 @@ mod tests {
         }
         // World area: 250° × 1 × 1.1, times scale² = 4.
         assert!((s.area() - 250f32.to_radians() * 1.1 * 4.0).abs() < 1e-4);
+    }
+
+    /// A whole sphere under a similarity meets rays in world space: the
+    /// same distances as in its object space (to rounding), on rays from
+    /// outside, from inside, grazing and missing; a non-uniform scale
+    /// (an ellipsoid) stays in object space.
+    #[test]
+    fn world_space_roots_match_object_space() {
+        let xf = |m: Mat4| Transform::new(m).unwrap();
+        let sim = xf(Mat4::from_translation(Vec3::new(0.3, -1.0, 2.0))
+            * Mat4::from_axis_angle(Vec3::new(1.0, 2.0, 0.5).normalize(), 0.7)
+            * Mat4::from_scale(Vec3::splat(1.7)));
+        let s = Sphere::new(sim, 0.6, false);
+        assert!(s.world_space);
+        assert!(!Sphere::partial(sim, 0.6, -0.6, 0.3, 360.0, false).world_space);
+        let ellipsoid = Sphere::new(xf(Mat4::from_scale(Vec3::new(1.0, 2.0, 1.0))), 1.0, false);
+        assert!(!ellipsoid.world_space);
+        // Along y the ellipsoid reaches 2: a ray down its y axis meets it there.
+        let r = Ray::new(Vec3::new(0.0, 5.0, 0.0), -Vec3::Y);
+        assert!((ellipsoid.intersect(&r, f32::INFINITY).unwrap() - 3.0).abs() < 1e-5);
+        let object = Sphere {
+            world_space: false,
+            ..s
+        };
+        let mut rng = lumis_math::Pcg32::new(5, 1);
+        let mut lengths = lumis_math::Pcg32::new(6, 1);
+        let mut v = || Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
+        let (mut hits, mut misses) = (0, 0);
+        for i in 0..4000 {
+            let o = match i % 3 {
+                0 => s.center + v() * 3.0,
+                1 => s.center + v() * 0.5, // inside
+                // Just off it, as a ray spawned from a hit (either side).
+                _ => {
+                    let off = if i % 2 == 0 { 1.001 } else { 0.999 };
+                    s.center + v().normalize_or_zero() * s.world_radius * off
+                }
+            };
+            let aim = s.center + v() * s.world_radius * 1.2 - o; // some graze or miss
+            let ray = Ray::new(o, aim * (0.5 + lengths.next_f32()));
+            let (a, b) = (
+                s.intersect(&ray, f32::INFINITY),
+                object.intersect(&ray, f32::INFINITY),
+            );
+            match (a, b) {
+                (Some(a), Some(b)) => {
+                    let scale = (ray.d.length() * a).max(1e-3);
+                    assert!(
+                        (a - b).abs() * ray.d.length() <= 1e-4 * scale.max(1.0),
+                        "{a} {b}"
+                    );
+                    hits += 1;
+                }
+                (None, None) => misses += 1,
+                // Only tangent rays may disagree on hitting at all.
+                (a, b) => {
+                    let t = a.or(b).unwrap();
+                    let p = ray.at(t) - s.center;
+                    let along = p.dot(ray.d.normalize()).abs() / s.world_radius;
+                    assert!(along < 1e-2, "{a:?} {b:?}: not a grazing ray");
+                }
+            }
+        }
+        assert!(hits > 2000 && misses > 100, "{hits} hits, {misses} misses");
     }
 }
