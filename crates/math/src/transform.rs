@@ -67,6 +67,25 @@ impl Transform {
     pub fn swaps_handedness(&self) -> bool {
         Mat3::from_mat4(self.m).determinant() < 0.0
     }
+
+    /// Whether the last row is `(0, 0, 0, 1)`: no projection.
+    pub fn is_affine(&self) -> bool {
+        self.m.row(3) == crate::Vec4::new(0.0, 0.0, 0.0, 1.0)
+    }
+}
+
+/// `s` if the linear map `m` is a rotation (or reflection) times a uniform
+/// scale `s > 0`, to a relative `tol`: `s` is the cube root of the columns'
+/// length product, each column's length within `tol s` of it and their
+/// pairwise dot products under `tol s^2`.
+pub fn uniform_scale(m: Mat3, tol: f32) -> Option<f32> {
+    let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
+    let (la, lb, lc) = (a.length(), b.length(), c.length());
+    let s = (la * lb * lc).cbrt();
+    let t2 = tol * s * s;
+    let orthogonal = a.dot(b).abs() < t2 && a.dot(c).abs() < t2 && b.dot(c).abs() < t2;
+    let uniform = (la - s).abs() < tol * s && (lb - s).abs() < tol * s;
+    (s > 0.0 && orthogonal && uniform).then_some(s)
 }
 
 #[cfg(test)]

@@ -2,7 +2,8 @@
 
 use super::phi_of;
 use super::{Aabb, Ray, SurfaceGeom};
-use lumis_math::{Transform, Vec2, Vec3, PI};
+use lumis_math::transform::uniform_scale;
+use lumis_math::{Mat3, Transform, Vec2, Vec3, PI};
 
 #[derive(Clone, Copy, Debug)]
 pub struct Sphere {
@@ -56,7 +57,10 @@ impl Sphere {
             world_space: false,
             theta_z: (0.0, 0.0),
         };
-        sphere.world_space = !sphere.is_partial() && is_similarity(&object_to_world);
+        // A rotation times a uniform scale, to a relative 1e-5.
+        sphere.world_space = !sphere.is_partial()
+            && object_to_world.is_affine()
+            && uniform_scale(Mat3::from_mat4(object_to_world.m), 1e-5).is_some();
         sphere.theta_z = (
             (sphere.zmin / radius).clamp(-1.0, 1.0).acos(),
             (sphere.zmax / radius).clamp(-1.0, 1.0).acos(),
@@ -201,30 +205,6 @@ fn roots(o: Vec3, d: Vec3, r: f32) -> Option<(f32, f32)> {
     };
     let (t0, t1) = (q / a, c / q);
     Some(if t0 > t1 { (t1, t0) } else { (t0, t1) })
-}
-
-/// Whether `xf` is affine with a linear part that is a rotation (or
-/// reflection) times a uniform scale, to a relative `1e-5`.
-fn is_similarity(xf: &Transform) -> bool {
-    let m = xf.m;
-    let row3 = m.row(3);
-    if row3 != lumis_math::Vec4::new(0.0, 0.0, 0.0, 1.0) {
-        return false;
-    }
-    let cols = [
-        m.x_axis.truncate(),
-        m.y_axis.truncate(),
-        m.z_axis.truncate(),
-    ];
-    let s2 = cols[0].length_squared();
-    let tol = 1e-5 * s2;
-    s2 > 0.0
-        && s2.is_finite()
-        && (cols[1].length_squared() - s2).abs() <= tol
-        && (cols[2].length_squared() - s2).abs() <= tol
-        && cols[0].dot(cols[1]).abs() <= tol
-        && cols[0].dot(cols[2]).abs() <= tol
-        && cols[1].dot(cols[2]).abs() <= tol
 }
 
 #[cfg(test)]

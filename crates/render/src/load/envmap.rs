@@ -11,6 +11,7 @@ use super::Warnings;
 use crate::image_io::read_image;
 use crate::light::{EnvMapping, GoniometricLight, ImageInfiniteLight, Light};
 use lumis_math::sampling::{equal_area_square_to_sphere, latlong_to_sphere};
+use lumis_math::transform::uniform_scale;
 use lumis_math::{Mat3, Rgb, Transform, Vec2, Vec3};
 use lumis_scene::{Diagnostic, Entity, SceneDesc};
 
@@ -214,15 +215,10 @@ pub fn upper_illuminance(texels: &[Rgb], width: u32, height: u32, mapping: EnvMa
 /// the map's densities wrong; it is warned about and orthonormalised.
 fn rigid_part(t: &Transform, loc: &lumis_scene::Loc, w: &mut Warnings) -> Mat3 {
     let m = Mat3::from_mat4(t.m);
-    let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
-    let (la, lb, lc) = (a.length(), b.length(), c.length());
-    let s = (la * lb * lc).cbrt();
-    let tol = 1e-3 * s * s;
-    let orthogonal = a.dot(b).abs() < tol && a.dot(c).abs() < tol && b.dot(c).abs() < tol;
-    let uniform = (la - s).abs() < 1e-3 * s && (lb - s).abs() < 1e-3 * s;
-    if s > 0.0 && orthogonal && uniform {
+    if let Some(s) = uniform_scale(m, 1e-3) {
         return m * (1.0 / s);
     }
+    let (a, b) = (m.x_axis, m.y_axis);
     w.push(Diagnostic::warning(
         loc,
         "the infinite light's transform is not a rotation with uniform scale; using its nearest rotation",
