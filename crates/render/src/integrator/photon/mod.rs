@@ -12,6 +12,7 @@ pub mod aim;
 pub mod budget;
 pub mod camera;
 pub mod connect;
+mod disc_grid;
 pub mod gather;
 pub mod map;
 pub mod pass;
