@@ -47,12 +47,25 @@ fn progressive_is_independent_of_threads_and_resumes_bit_identically() {
     // The mode is on: one map for the whole render gives another image.
     let single = run(&small_default(false), 6, 2, None, None);
     assert!(!same_bits(&full.film, &single.film));
-    // Memory stays at one iteration's maps (the single map of the same size).
+    // Memory stays at one iteration's maps: the photons, their trees and
+    // the radiance photons as the single map of the same size, plus the
+    // radiance photons' lookup grid (which one map does not build); and a
+    // render of four times the iterations peaks at the same.
     let one = single.photon_stats.unwrap().memory_bytes as f64;
+    let maps = (stats.memory_bytes - stats.grid_bytes) as f64;
+    assert!(maps < 1.1 * one, "{maps} vs {one}");
+    assert!(stats.grid_bytes > 0, "the lookup grid is counted");
+    let long = run(&l, 24, 2, None, None).photon_stats.unwrap();
+    assert_eq!(long.iterations, 12);
     assert!(
-        (stats.memory_bytes as f64) < 1.1 * one,
-        "{} vs {one}",
+        (long.memory_bytes as f64) < 1.1 * stats.memory_bytes as f64,
+        "{} after 12 iterations, {} after 3",
+        long.memory_bytes,
         stats.memory_bytes
+    );
+    eprintln!(
+        "DBG maps {maps} one {one} grid {} long {} long grid {}",
+        stats.grid_bytes, long.memory_bytes, long.grid_bytes
     );
     // Stopped inside an iteration (3) and at its end (4); resumed through the
     // checkpoint format on another thread count.

@@ -21,11 +21,23 @@ use lumis_math::Vec3;
 /// a fifth slower, 0.5 twice as slow (a point in 120 cells).
 const CELL_PER_RADIUS: f32 = 1.5;
 
-/// Cells at most, per candidate (plus a floor): past it the cells grow.
-const CELLS_PER_CANDIDATE: f64 = 8.0;
-
 /// Candidates a point may add at most, on average, before the cells grow.
 const MAX_PER_POINT: f64 = 2000.0;
+
+/// Bits of a cell's key per axis.
+const AXIS_BITS: u32 = 21;
+
+/// An unused slot's key.
+const EMPTY: u64 = u64::MAX;
+
+/// A cell's key and its run of candidates: one cache line's quarter, so
+/// a lookup's first read brings both.
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    key: u64,
+    start: u32,
+    end: u32,
+}
 
 #[derive(Debug, Default)]
 pub(crate) struct DiscGrid {
@@ -33,8 +45,13 @@ pub(crate) struct DiscGrid {
     h: f32,
     inv_h: f32,
     dims: [i64; 3],
-    /// Cell `x + dims[0] (y + dims[1] z)` lists `cand[start[c]..start[c + 1]]`.
-    start: Vec<u32>,
+    /// The cells that list candidates, hashed (linear probing, at most
+    /// half full; the length a power of two). Memory follows the
+    /// candidates, not the cells of the box, so that a long render's small
+    /// discs do not grow it.
+    slots: Vec<Slot>,
+    /// Slots taken.
+    cells: usize,
     /// Position of each candidate and, in `[3]`, the bits of its point's
     /// index; cell by cell, each cell's nearest its centre first.
     cand: Vec<[f32; 4]>,
@@ -43,8 +60,14 @@ pub(crate) struct DiscGrid {
 impl DiscGrid {
     /// A grid over the balls of squared radii `r0_2 scale2` around `pos`,
     /// or None when a radius is not finite. It answers queries for any
-    /// scale up to `scale2` (smaller balls meet fewer cells).
-    pub(crate) fn build(pos: &[Vec3], r0_2: &[f32], scale2: f32) -> Option<DiscGrid> {
+    /// scale up to `scale2` (smaller balls meet fewer cells). Its cells
+    /// grow until at most `max_cells` list candidates.
+    pub(crate) fn build(
+        pos: &[Vec3],
+        r0_2: &[f32],
+        scale2: f32,
+        max_cells: usize,
+    ) -> Option<DiscGrid> {
         assert_eq!(pos.len(), r0_2.len(), "one radius per point");
         if pos.is_empty() {
             return Some(DiscGrid::default());
@@ -73,57 +96,84 @@ impl DiscGrid {
         let lo = [lo[0] - pad, lo[1] - pad, lo[2] - pad];
         let hi = [hi[0] + pad, hi[1] + pad, hi[2] + pad];
         let radii: Vec<f32> = r2.iter().map(|r| r.sqrt() + pad).collect();
-        let n = pos.len() as f64;
-        let mut h = (CELL_PER_RADIUS * median(&radii)).max(f32::MIN_POSITIVE);
-        let cells = |h: f32| {
-            (0..3)
-                .map(|d| ((hi[d] - lo[d]) / h) as f64 + 1.0)
-                .product::<f64>()
-        };
-        while estimate(&radii, h) > MAX_PER_POINT * n
-            || cells(h) > CELLS_PER_CANDIDATE * estimate(&radii, h) + 65536.0
-        {
+        let extent = (0..3).map(|d| hi[d] - lo[d]).fold(0.0f32, f32::max);
+        let mut h = (CELL_PER_RADIUS * median(&radii))
+            .max(extent / (1u32 << (AXIS_BITS - 1)) as f32)
+            .max(f32::MIN_POSITIVE);
+        while estimate(&radii, h) > MAX_PER_POINT * pos.len() as f64 {
             h *= 1.25;
         }
-        if estimate(&radii, h).max(cells(h)) > (u32::MAX / 2) as f64 {
+        if estimate(&radii, h) > (u32::MAX / 2) as f64 {
             return None;
         }
-        let inv_h = 1.0 / h;
-        let dims = [0, 1, 2].map(|d| ((hi[d] - lo[d]) * inv_h).floor() as i64 + 1);
-        let mut g = DiscGrid {
-            lo,
-            h,
-            inv_h,
-            dims,
-            start: vec![0; (dims[0] * dims[1] * dims[2]) as usize + 1],
-            cand: Vec::new(),
-        };
-        // Count each cell's candidates, then place them, point by point.
-        g.for_each_cell(pos, &radii, |g, c, _| g.start[c + 1] += 1);
-        for c in 1..g.start.len() {
-            g.start[c] += g.start[c - 1];
-        }
-        let total = *g.start.last().expect("a cell") as usize;
-        g.cand = vec![[0.0; 4]; total];
-        let mut next = g.start.clone();
-        g.for_each_cell(pos, &radii, |g, c, i| {
-            let at = next[c] as usize;
-            let p = pos[i];
-            g.cand[at] = [p.x, p.y, p.z, f32::from_bits(i as u32)];
-            next[c] += 1;
-        });
-        for cell in 0..g.start.len() - 1 {
-            let (a, b) = (g.start[cell] as usize, g.start[cell + 1] as usize);
-            let x = cell as i64 % dims[0];
-            let y = cell as i64 / dims[0] % dims[1];
-            let z = cell as i64 / (dims[0] * dims[1]);
-            let centre = g.centre([x, y, z]);
-            g.cand[a..b].sort_unstable_by(|p, q| {
-                let (dp, dq) = (dist2(p, centre), dist2(q, centre));
-                dp.total_cmp(&dq).then(p[3].to_bits().cmp(&q[3].to_bits()))
+        // Every (cell, point) pair, grouped by cell and ordered within it;
+        // cells grown until at most `max_cells` list candidates.
+        let (mut g, pairs, cells) = loop {
+            let inv_h = 1.0 / h;
+            let g = DiscGrid {
+                lo,
+                h,
+                inv_h,
+                dims: [0, 1, 2].map(|d| ((hi[d] - lo[d]) * inv_h).floor() as i64 + 1),
+                slots: Vec::new(),
+                cells: 0,
+                cand: Vec::new(),
+            };
+            let mut pairs: Vec<(u64, f32, u32)> = Vec::new();
+            g.for_each_cell(pos, &radii, |g, c, i| {
+                let p = pos[i];
+                pairs.push((key(c), dist2(&[p.x, p.y, p.z, 0.0], g.centre(c)), i as u32));
             });
+            pairs.sort_unstable_by(|a, b| {
+                (a.0.cmp(&b.0))
+                    .then(a.1.total_cmp(&b.1))
+                    .then(a.2.cmp(&b.2))
+            });
+            let cells = pairs.chunk_by(|a, b| a.0 == b.0).count();
+            if cells <= max_cells {
+                break (g, pairs, cells);
+            }
+            h *= 1.25;
+        };
+        let empty = Slot {
+            key: EMPTY,
+            start: 0,
+            end: 0,
+        };
+        g.slots = vec![empty; (2 * cells).next_power_of_two()];
+        g.cells = cells;
+        g.cand = pairs
+            .iter()
+            .map(|&(_, _, i)| {
+                let p = pos[i as usize];
+                [p.x, p.y, p.z, f32::from_bits(i)]
+            })
+            .collect();
+        let mut start = 0u32;
+        for run in pairs.chunk_by(|a, b| a.0 == b.0) {
+            let end = start + run.len() as u32;
+            let s = g.free_slot(run[0].0);
+            g.slots[s] = Slot {
+                key: run[0].0,
+                start,
+                end,
+            };
+            start = end;
         }
         Some(g)
+    }
+
+    fn hash(&self, key: u64) -> usize {
+        (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 24) as usize & (self.slots.len() - 1)
+    }
+
+    fn free_slot(&self, key: u64) -> usize {
+        let mask = self.slots.len() - 1;
+        let mut s = self.hash(key);
+        while self.slots[s].key != EMPTY {
+            s = (s + 1) & mask;
+        }
+        s
     }
 
     fn centre(&self, c: [i64; 3]) -> [f32; 3] {
@@ -132,10 +182,10 @@ impl DiscGrid {
 
     /// `f(grid, cell, point)` for every cell each point's ball meets.
     fn for_each_cell(
-        &mut self,
+        &self,
         pos: &[Vec3],
         radii: &[f32],
-        mut f: impl FnMut(&mut DiscGrid, usize, usize),
+        mut f: impl FnMut(&DiscGrid, [i64; 3], usize),
     ) {
         let (lo, inv_h, dims) = (self.lo, self.inv_h, self.dims);
         let h = 1.0 / inv_h;
@@ -156,7 +206,7 @@ impl DiscGrid {
                             d2 += off * off;
                         }
                         if d2 <= r * r {
-                            f(self, (x + dims[0] * (y + dims[1] * z)) as usize, i);
+                            f(self, c, i);
                         }
                     }
                 }
@@ -193,8 +243,18 @@ impl DiscGrid {
             }
             c[d] = f as i64;
         }
-        let cell = (c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])) as usize;
-        let (a, b) = (self.start[cell] as usize, self.start[cell + 1] as usize);
+        let (key, mask) = (key(c), self.slots.len() - 1);
+        let mut s = self.hash(key);
+        let (a, b) = loop {
+            let slot = self.slots[s];
+            if slot.key == key {
+                break (slot.start as usize, slot.end as usize);
+            }
+            if slot.key == EMPTY {
+                return None;
+            }
+            s = (s + 1) & mask;
+        };
         let centre = self.centre(c);
         let dq = dist2(&[q[0], q[1], q[2], 0.0], centre).sqrt();
         let reach = |bound: f32| ((dq + bound.sqrt()) * (1.0 + 1e-4)).powi(2);
@@ -216,9 +276,18 @@ impl DiscGrid {
         best
     }
 
-    pub(crate) fn memory_bytes(&self) -> usize {
-        self.start.capacity() * 4 + self.cand.capacity() * 16
+    /// Cells that list candidates.
+    pub(crate) fn cells(&self) -> usize {
+        self.cells
     }
+
+    pub(crate) fn memory_bytes(&self) -> usize {
+        self.slots.capacity() * std::mem::size_of::<Slot>() + self.cand.capacity() * 16
+    }
+}
+
+fn key(c: [i64; 3]) -> u64 {
+    c[0] as u64 | (c[1] as u64) << AXIS_BITS | (c[2] as u64) << (2 * AXIS_BITS)
 }
 
 fn median(v: &[f32]) -> f32 {
@@ -284,7 +353,7 @@ mod tests {
             let ok: Vec<bool> = (0..n).map(|_| u() < 0.7).collect();
             // Built for balls 1.5x the queries' (or as large) in area.
             let s = if case % 2 == 0 { 0.6 } else { 1.0 };
-            let g = DiscGrid::build(&pos, &r2, 1.0).expect("finite radii");
+            let g = DiscGrid::build(&pos, &r2, 1.0, usize::MAX).expect("finite radii");
             let (mut found, mut queries) = (0, 0);
             for k in 0..20000 {
                 // On points, beside them, at their balls' edges, anywhere.
@@ -312,9 +381,9 @@ mod tests {
     #[test]
     fn refuses_radii_that_are_not_finite() {
         let pos = [Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0)];
-        assert!(DiscGrid::build(&pos, &[1.0, f32::INFINITY], 1.0).is_none());
-        assert!(DiscGrid::build(&pos, &[1.0, f32::NAN], 1.0).is_none());
-        let g = DiscGrid::build(&[], &[], 1.0).expect("empty");
+        assert!(DiscGrid::build(&pos, &[1.0, f32::INFINITY], 1.0, 10).is_none());
+        assert!(DiscGrid::build(&pos, &[1.0, f32::NAN], 1.0, 10).is_none());
+        let g = DiscGrid::build(&[], &[], 1.0, 10).expect("empty");
         assert_eq!(g.nearest(Vec3::ZERO, f32::INFINITY, |_, _| true), None);
     }
 }

@@ -22,6 +22,9 @@ pub struct PhotonStats {
     pub build_time: Duration,
     pub radiance_time: Duration,
     pub memory_bytes: usize,
+    /// Of `memory_bytes`, the radiance photons' lookup grid (progressive
+    /// iterations; its peak).
+    pub grid_bytes: usize,
     /// Progressive iterations begun (0 without the progressive mode); the
     /// counts and times are then sums over them and the memory their peak.
     pub iterations: u32,
@@ -47,6 +50,7 @@ impl PhotonStats {
         self.build_time += st.build_time;
         self.radiance_time += st.radiance_time;
         self.memory_bytes = self.memory_bytes.max(st.memory_bytes);
+        self.grid_bytes = self.grid_bytes.max(st.grid_bytes);
         self.iterations += 1;
         self.caustic_radius = st.caustic_radius;
     }
@@ -251,6 +255,7 @@ impl PhotonMaps {
             + self.volume_global.memory_bytes()
             + self.volume_caustic.memory_bytes()
             + self.radiance.as_ref().map_or(0, |r| r.memory_bytes());
+        st.grid_bytes = self.radiance.as_ref().map_or(0, |r| r.grid_bytes());
         st.caustic_radius = radii
             .as_ref()
             .map_or(0.0, |r| (r.caustic.median_r2() * r.scale2).sqrt());

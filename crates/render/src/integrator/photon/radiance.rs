@@ -38,13 +38,15 @@ const GRID_KEEP: f32 = 0.5;
 pub struct Points {
     tree: KdTree,
     pos: Vec<Vec3>,
-    normals: Vec<Vec3>,
-    /// Progressive iterations: each point's initial squared disc radius
-    /// (the global radius field's there; read once per render, not once
-    /// per iteration). Empty otherwise.
-    r0_2: Vec<f32>,
-    /// The last lookup grid built and the `scale2` it was built for.
-    grid: Mutex<Option<(f32, Option<Arc<DiscGrid>>)>>,
+    /// Each point's unit normal and, in `[3]`, in progressive iterations,
+    /// its initial squared disc radius (the global radius field's there;
+    /// read once per render, not once per iteration): what a lookup reads
+    /// of a candidate, side by side.
+    normal_r0_2: Vec<[f32; 4]>,
+    /// The radii are set ([`Points::with_radii`]).
+    has_radii: bool,
+    /// The lookup grids built: the last and the `scale2` it was built for.
+    grid: Mutex<GridCache>,
 }
 
 impl Points {
@@ -60,19 +62,25 @@ impl Points {
         Points {
             tree,
             pos: order.iter().map(|&j| map.photon(at(j)).pos()).collect(),
-            normals: order
+            normal_r0_2: order
                 .iter()
-                .map(|&j| normals[map.original_index(at(j)) as usize].normalize_or_zero())
+                .map(|&j| {
+                    let n = normals[map.original_index(at(j)) as usize].normalize_or_zero();
+                    [n.x, n.y, n.z, 0.0]
+                })
                 .collect(),
-            r0_2: Vec::new(),
-            grid: Mutex::new(None),
+            has_radii: false,
+            grid: Mutex::new(GridCache::default()),
         }
     }
 
     /// [`Points::from_map`] with each point's initial squared disc radius
     /// read from the global radius field.
     pub fn with_radii(mut self, field: &RadiusField) -> Points {
-        self.r0_2 = self.pos.iter().map(|&p| field.r2_at(p)).collect();
+        for (m, &p) in self.normal_r0_2.iter_mut().zip(&self.pos) {
+            m[3] = field.r2_at(p);
+        }
+        self.has_radii = true;
         self
     }
 
@@ -84,30 +92,41 @@ impl Points {
         self.pos.is_empty()
     }
 
+    /// Bytes of the points, not counting a lookup grid.
     pub fn memory_bytes(&self) -> usize {
-        let grid = self.grid.lock().unwrap_or_else(|e| e.into_inner());
-        let grid = grid.as_ref().and_then(|g| g.1.as_ref());
-        self.tree.memory_bytes()
-            + (self.pos.capacity() + self.normals.capacity()) * 12
-            + self.r0_2.capacity() * 4
-            + grid.map_or(0, |g| g.memory_bytes())
+        self.tree.memory_bytes() + self.pos.capacity() * 12 + self.normal_r0_2.capacity() * 16
     }
 
     /// A lookup grid for discs `scale2` times the initial ones: the last
     /// one built while these discs are at least [`GRID_KEEP`] of its own,
     /// else a new one. Which grid answers never changes a lookup's result.
+    /// Its cells are at most twice the first grid's (plus a floor): the
+    /// grid's memory stays that of the first however long the render.
     fn grid(&self, scale2: f32) -> Option<Arc<DiscGrid>> {
-        let mut last = self.grid.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((s, g)) = last.as_ref() {
+        let mut cache = self.grid.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((s, g)) = cache.last.as_ref() {
             if scale2 <= *s && scale2 >= GRID_KEEP * s {
                 return g.clone();
             }
         }
-        *last = None;
-        let g = DiscGrid::build(&self.pos, &self.r0_2, scale2).map(Arc::new);
-        *last = Some((scale2, g.clone()));
+        cache.last = None;
+        let r0_2: Vec<f32> = self.normal_r0_2.iter().map(|m| m[3]).collect();
+        let max_cells = cache.first_cells.map_or(usize::MAX, |c| 2 * c + 4096);
+        let g = DiscGrid::build(&self.pos, &r0_2, scale2, max_cells).map(Arc::new);
+        if let Some(g) = &g {
+            cache.first_cells.get_or_insert(g.cells());
+        }
+        cache.last = Some((scale2, g.clone()));
         g
     }
+}
+
+/// [`Points`]' lookup grids: the last built, and how many cells the first
+/// one used.
+#[derive(Debug, Default)]
+struct GridCache {
+    last: Option<(f32, Option<Arc<DiscGrid>>)>,
+    first_cells: Option<usize>,
 }
 
 /// Irradiance at [`Points`].
@@ -122,18 +141,6 @@ pub struct RadiancePhotons {
     /// Progressive iterations: the lookup's candidates per cell (exact;
     /// None where a radius is not finite, and the kd-tree answers).
     grid: Option<Arc<DiscGrid>>,
-    /// Progressive iterations: what the grid's lookup reads of a point, in
-    /// one cache line.
-    records: Vec<Record>,
-}
-
-/// A point's normal, squared disc radius in this iteration and irradiance.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(32))]
-struct Record {
-    n: Vec3,
-    r2: f32,
-    e: Rgb,
 }
 
 impl RadiancePhotons {
@@ -156,7 +163,6 @@ impl RadiancePhotons {
             irradiance,
             scale2: None,
             grid: None,
-            records: Vec::new(),
         }
     }
 
@@ -165,24 +171,22 @@ impl RadiancePhotons {
     /// (progressive iterations): `r0_2 scale2` at each point, what
     /// `Radii::global_r2` gives there.
     pub fn fixed(map: &PhotonMap, points: Arc<Points>, scale2: f32) -> RadiancePhotons {
-        assert_eq!(points.r0_2.len(), points.len(), "points made with_radii");
+        assert!(points.has_radii, "points made with_radii");
         let irradiance = par_map(&points, |i, p, n, scratch| {
-            irradiance_within(map, p, n, (points.r0_2[i] * scale2).sqrt(), scratch)
+            irradiance_within(
+                map,
+                p,
+                n,
+                (points.normal_r0_2[i][3] * scale2).sqrt(),
+                scratch,
+            )
         });
         let grid = points.grid(scale2);
-        let records = (0..points.len())
-            .map(|i| Record {
-                n: points.normals[i],
-                r2: points.r0_2[i] * scale2,
-                e: irradiance[i],
-            })
-            .collect();
         RadiancePhotons {
             points,
             irradiance,
             scale2: Some(scale2),
             grid,
-            records,
         }
     }
 
@@ -203,13 +207,14 @@ impl RadiancePhotons {
         }
         let mut bound = inclusive(max_radius * max_radius);
         if let Some(g) = &self.grid {
+            let s = self.scale2.expect("a grid only in progressive iterations");
             let best = g.nearest(p, bound, |i, d2| {
-                let r = &self.records[i as usize];
-                d2 <= r.r2 && r.n.dot(n) > NORMAL_DOT
+                let m = &self.points.normal_r0_2[i as usize];
+                d2 <= m[3] * s && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT
             });
-            return best.map(|i| self.records[i as usize].e);
+            return best.map(|i| self.irradiance[i as usize]);
         }
-        let normals = &self.points.normals;
+        let meta = &self.points.normal_r0_2;
         let q = p.to_array();
         let mut best = None;
         self.points.tree.search(q, &mut bound, |pts, bound| {
@@ -217,8 +222,9 @@ impl RadiancePhotons {
                 let d2 = dist2(pt, q);
                 if d2 < *bound {
                     let i = pt[3].to_bits() as usize;
-                    let inside = self.scale2.is_none_or(|s| d2 <= self.points.r0_2[i] * s);
-                    if inside && normals[i].dot(n) > NORMAL_DOT {
+                    let m = &meta[i];
+                    let inside = self.scale2.is_none_or(|s| d2 <= m[3] * s);
+                    if inside && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT {
                         *bound = d2;
                         best = Some(i);
                     }
@@ -236,11 +242,17 @@ impl RadiancePhotons {
         self.points.is_empty()
     }
 
-    /// Bytes of this iteration's values and of the points they share.
+    /// Bytes of this iteration's values, of the points they share and of
+    /// the lookup grid.
     pub fn memory_bytes(&self) -> usize {
         self.points.memory_bytes()
             + self.irradiance.capacity() * std::mem::size_of::<Rgb>()
-            + self.records.capacity() * std::mem::size_of::<Record>()
+            + self.grid_bytes()
+    }
+
+    /// Bytes of the lookup grid alone (0 without one).
+    pub fn grid_bytes(&self) -> usize {
+        self.grid.as_ref().map_or(0, |g| g.memory_bytes())
     }
 }
 
@@ -254,7 +266,8 @@ fn par_map(
         .into_par_iter()
         .with_min_len(256)
         .map_init(Vec::new, |scratch, i| {
-            f(i, points.pos[i], points.normals[i], scratch)
+            let m = &points.normal_r0_2[i];
+            f(i, points.pos[i], Vec3::new(m[0], m[1], m[2]), scratch)
         })
         .collect_into_vec(&mut out);
     out
