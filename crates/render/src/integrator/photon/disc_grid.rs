@@ -5,24 +5,30 @@
 //! squared radius `r2[i]`, the iteration's global radius at the point), so
 //! the points a query at `q` can return are those whose balls hold `q`. The
 //! grid lists, for every cell, each point whose ball (padded against
-//! rounding) meets the cell; a query scans its cell's list, in point order,
-//! and keeps the nearest point that passes the distance and ball tests and
-//! the caller's own (the normal's). Every point that could be returned is in
-//! the list, so the answer is the kd-tree search's (up to which of two
-//! points at exactly the same distance wins), with no descent and no
-//! backtracking: a gather-ray hit reads one contiguous run of candidates.
-//! Built once per iteration, since the balls shrink with the radius.
+//! rounding) meets the cell, nearest the cell's centre first; a query scans
+//! its cell's list until the candidates are too far from the centre to
+//! beat its best, and keeps the nearest point that passes the distance and
+//! ball tests and the caller's own (the normal's). Every point that could
+//! be returned is in the list, so the answer is the kd-tree search's (of
+//! points at exactly the same distance, the lowest index), with no descent
+//! and no backtracking: a gather-ray hit reads one contiguous run of
+//! candidates. A grid built for some discs serves any smaller ones
+//! (`radiance.rs` keeps one until the discs halve in area).
 
 use super::map::dist2;
 use lumis_math::Vec3;
 
 /// A cell's side over the balls' median radius. Measured on the default
-/// scene (single-thread profiles, 2026-12-07): 1.5 and 2 best, 1 and 2.5
-/// a fifth slower, 0.5 twice as slow (a point in 120 cells).
+/// scene (the lookup's share of single-thread profiles, 2026-12-07, while
+/// this grid was being written): 1.5 and 2 level, 1 about a quarter more,
+/// 2.5 no better; at 0.5 a point is listed in about 120 cells.
 const CELL_PER_RADIUS: f32 = 1.5;
 
-/// Candidates a point may add at most, on average, before the cells grow.
-const MAX_PER_POINT: f64 = 2000.0;
+/// Cells a point's ball's bounding box may cover, on average, before the
+/// cells grow (42-62 on the default scene, the caustic set and the caustic
+/// glass at 1.5 radii a cell; a few balls far larger than the median would
+/// otherwise list each point in thousands of cells).
+const MAX_PER_POINT: f64 = 128.0;
 
 /// Bits of a cell's key per axis.
 const AXIS_BITS: u32 = 21;
@@ -187,8 +193,7 @@ impl DiscGrid {
         radii: &[f32],
         mut f: impl FnMut(&DiscGrid, [i64; 3], usize),
     ) {
-        let (lo, inv_h, dims) = (self.lo, self.inv_h, self.dims);
-        let h = 1.0 / inv_h;
+        let (lo, h, inv_h, dims) = (self.lo, self.h, self.inv_h, self.dims);
         for (i, (p, &r)) in pos.iter().zip(radii).enumerate() {
             let p = p.to_array();
             let cell =
@@ -375,6 +380,33 @@ mod tests {
                 found > queries / 10,
                 "case {case}: {found} of {queries} found"
             );
+        }
+    }
+
+    #[test]
+    fn a_few_large_balls_do_not_list_every_point_in_many_cells() {
+        // One ball in 50 twenty times the others' radius.
+        let mut rng = Pcg32::new(9, 0);
+        let n = 5000;
+        let pos: Vec<Vec3> = (0..n)
+            .map(|_| Vec3::new(rng.next_f32(), 0.0, rng.next_f32()))
+            .collect();
+        let r2: Vec<f32> = (0..n)
+            .map(|i| if i % 50 == 0 { 0.4f32 } else { 0.02 }.powi(2))
+            .collect();
+        let g = DiscGrid::build(&pos, &r2, 1.0, usize::MAX).expect("finite radii");
+        // 41 a point; 242 with cells sized by the median radius alone.
+        assert!(
+            g.cand.len() <= 100 * n,
+            "{} candidates for {n} points",
+            g.cand.len()
+        );
+        let ok = vec![true; n];
+        for k in 0..5000 {
+            let q = Vec3::new(rng.next_f32(), 0.01 * rng.next_f32(), rng.next_f32());
+            let want = brute(&pos, &r2, 1.0, q, f32::INFINITY, &ok);
+            let got = g.nearest(q, f32::INFINITY, |i, d2| d2 <= r2[i as usize]);
+            assert_eq!(got, want, "query {k} at {q:?}");
         }
     }
 
