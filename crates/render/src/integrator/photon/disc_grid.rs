@@ -158,7 +158,7 @@ impl DiscGrid {
         let mut start = 0u32;
         for run in pairs.chunk_by(|a, b| a.0 == b.0) {
             let end = start + run.len() as u32;
-            let s = g.free_slot(run[0].0);
+            let s = g.probe(run[0].0);
             g.slots[s] = Slot {
                 key: run[0].0,
                 start,
@@ -173,10 +173,12 @@ impl DiscGrid {
         (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 24) as usize & (self.slots.len() - 1)
     }
 
-    fn free_slot(&self, key: u64) -> usize {
+    /// The slot holding `key`, or the empty one where it would go.
+    #[inline]
+    fn probe(&self, key: u64) -> usize {
         let mask = self.slots.len() - 1;
         let mut s = self.hash(key);
-        while self.slots[s].key != EMPTY {
+        while self.slots[s].key != key && self.slots[s].key != EMPTY {
             s = (s + 1) & mask;
         }
         s
@@ -248,18 +250,11 @@ impl DiscGrid {
             }
             c[d] = f as i64;
         }
-        let (key, mask) = (key(c), self.slots.len() - 1);
-        let mut s = self.hash(key);
-        let (a, b) = loop {
-            let slot = self.slots[s];
-            if slot.key == key {
-                break (slot.start as usize, slot.end as usize);
-            }
-            if slot.key == EMPTY {
-                return None;
-            }
-            s = (s + 1) & mask;
-        };
+        let slot = self.slots[self.probe(key(c))];
+        if slot.key == EMPTY {
+            return None;
+        }
+        let (a, b) = (slot.start as usize, slot.end as usize);
         let centre = self.centre(c);
         let dq = dist2(&[q[0], q[1], q[2], 0.0], centre).sqrt();
         let reach = |bound: f32| ((dq + bound.sqrt()) * (1.0 + 1e-4)).powi(2);

@@ -207,15 +207,17 @@ impl RadiancePhotons {
             return None;
         }
         let mut bound = inclusive(max_radius * max_radius);
+        let meta = &self.points.normal_r0_2;
+        // Inside the point's own disc (progressive iterations) and facing
+        // the same way.
+        let readable = |m: &[f32; 4], d2: f32| {
+            self.scale2.is_none_or(|s| d2 <= m[3] * s)
+                && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT
+        };
         if let Some(g) = &self.grid {
-            let s = self.scale2.expect("a grid only in progressive iterations");
-            let best = g.nearest(p, bound, |i, d2| {
-                let m = &self.points.normal_r0_2[i as usize];
-                d2 <= m[3] * s && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT
-            });
+            let best = g.nearest(p, bound, |i, d2| readable(&meta[i as usize], d2));
             return best.map(|i| self.irradiance[i as usize]);
         }
-        let meta = &self.points.normal_r0_2;
         let q = p.to_array();
         let mut best = None;
         self.points.tree.search(q, &mut bound, |pts, bound| {
@@ -223,9 +225,7 @@ impl RadiancePhotons {
                 let d2 = dist2(pt, q);
                 if d2 < *bound {
                     let i = pt[3].to_bits() as usize;
-                    let m = &meta[i];
-                    let inside = self.scale2.is_none_or(|s| d2 <= m[3] * s);
-                    if inside && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT {
+                    if readable(&meta[i], d2) {
                         *bound = d2;
                         best = Some(i);
                     }
