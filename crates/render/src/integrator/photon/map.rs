@@ -1,182 +1,15 @@
-//! The photon map: photons and a kd-tree over their positions for k-nearest
-//! and fixed-radius queries.
-//!
-//! The tree is complete and implicit: `2^d` leaves of equal size (at most
-//! `leaf_size` points), each inner node a median split on the widest axis of
-//! its points, stored heap-ordered (children of `i` are `2i`, `2i + 1`).
-//! Leaves hold copies of the positions (with the point index) contiguously,
-//! so a query reads 16 bytes per candidate; the photons themselves are
-//! reordered into leaf order so that a query's photons are close in memory.
-//! Traversal is near-first with an explicit stack and prunes cells by their
-//! exact distance lower bound (per-axis offsets, Arya & Mount 1993).
+//! The photon map: photons and a kd-tree over their positions
+//! (`kdtree.rs`) for k-nearest and fixed-radius queries. The photons are
+//! reordered into the tree's leaf order so that a query's photons are close
+//! in memory.
 
+pub(crate) use super::kdtree::{dist2, inclusive, splat, KdTree, Quad};
 use super::photon::Photon;
 use lumis_math::{Rgb, Vec3, PI};
-use rayon::prelude::*;
 
 /// Points per leaf at most (the average is between half and all of it):
 /// measured best for k = 50 among 1M photons.
 const MAP_LEAF: usize = 64;
-
-#[derive(Clone, Copy, Debug, Default)]
-struct Node {
-    split: f32,
-    dim: u32,
-}
-
-/// A static kd-tree over points; query results are the points' indices in
-/// the slice it was built from.
-#[derive(Debug, Default)]
-pub(crate) struct KdTree {
-    /// Leaf order; `[3]` holds the index bits.
-    points: Vec<[f32; 4]>,
-    /// Heap-indexed inner nodes; `nodes.len()` is the leaf count (0 unused).
-    nodes: Vec<Node>,
-    leaf_start: Vec<u32>,
-}
-
-impl KdTree {
-    pub(crate) fn build(positions: impl IntoIterator<Item = Vec3>, leaf_size: usize) -> KdTree {
-        let mut points: Vec<[f32; 4]> = positions
-            .into_iter()
-            .enumerate()
-            .map(|(i, p)| [p.x, p.y, p.z, f32::from_bits(i as u32)])
-            .collect();
-        let n = points.len();
-        assert!(n < u32::MAX as usize, "too many points for a kd-tree");
-        if n == 0 {
-            return KdTree::default();
-        }
-        let leaves = n.div_ceil(leaf_size).next_power_of_two();
-        let leaf_start: Vec<u32> = (0..=leaves)
-            .map(|j| (j as u64 * n as u64 / leaves as u64) as u32)
-            .collect();
-        let mut nodes = vec![Node::default(); leaves];
-        // Level by level: the nodes of a level are contiguous in the heap and
-        // own disjoint, contiguous ranges of points.
-        let mut level = 1;
-        while level < leaves {
-            let per = leaves / level;
-            let mut slices = Vec::with_capacity(level);
-            let mut rest = &mut points[..];
-            for i in 0..level {
-                let len = (leaf_start[(i + 1) * per] - leaf_start[i * per]) as usize;
-                let (s, r) = rest.split_at_mut(len);
-                let mid = (leaf_start[i * per + per / 2] - leaf_start[i * per]) as usize;
-                slices.push((s, mid));
-                rest = r;
-            }
-            let mut level_nodes = Vec::with_capacity(level);
-            slices
-                .into_par_iter()
-                .with_min_len(64)
-                .map(|(s, mid)| split(s, mid))
-                .collect_into_vec(&mut level_nodes);
-            nodes[level..2 * level].copy_from_slice(&level_nodes);
-            level *= 2;
-        }
-        KdTree {
-            points,
-            nodes,
-            leaf_start,
-        }
-    }
-
-    pub(crate) fn memory_bytes(&self) -> usize {
-        self.points.capacity() * 16 + self.nodes.capacity() * 8 + self.leaf_start.capacity() * 4
-    }
-
-    /// Original indices in leaf order; afterwards results are leaf positions.
-    pub(crate) fn reindex_to_leaf_order(&mut self) -> Vec<u32> {
-        let mut order = Vec::with_capacity(self.points.len());
-        for (i, p) in self.points.iter_mut().enumerate() {
-            order.push(p[3].to_bits());
-            p[3] = f32::from_bits(i as u32);
-        }
-        order
-    }
-
-    /// Visits every leaf that may hold a point at squared distance < `*bound`
-    /// from `q`, nearest first; `leaf` may shrink `bound`.
-    #[inline(always)]
-    pub(crate) fn search(
-        &self,
-        q: [f32; 3],
-        bound: &mut f32,
-        mut leaf: impl FnMut(&[[f32; 4]], &mut f32),
-    ) {
-        if self.points.is_empty() {
-            return;
-        }
-        let inner = self.nodes.len();
-        let mut stack = [(0u32, 0.0f32, [0.0f32; 3]); 40];
-        let mut sp = 0;
-        let mut node = 1;
-        let mut off = [0.0f32; 3];
-        loop {
-            while node < inner {
-                let nd = self.nodes[node];
-                let d = nd.dim as usize;
-                let diff = q[d] - nd.split;
-                let near = 2 * node + (diff >= 0.0) as usize;
-                // `off` with its `d`-th offset replaced, by selects: an
-                // indexed store into the array and a wider load back stalled
-                // store forwarding (a fifth of a lookup's time in profiles).
-                let far_off = [
-                    if d == 0 { diff } else { off[0] },
-                    if d == 1 { diff } else { off[1] },
-                    if d == 2 { diff } else { off[2] },
-                ];
-                let rd =
-                    far_off[0] * far_off[0] + far_off[1] * far_off[1] + far_off[2] * far_off[2];
-                if rd < *bound {
-                    stack[sp] = ((near ^ 1) as u32, rd, far_off);
-                    sp += 1;
-                }
-                node = near;
-            }
-            let j = node - inner;
-            let (a, b) = (self.leaf_start[j] as usize, self.leaf_start[j + 1] as usize);
-            leaf(&self.points[a..b], bound);
-            loop {
-                if sp == 0 {
-                    return;
-                }
-                sp -= 1;
-                let (n, rd, o) = stack[sp];
-                if rd < *bound {
-                    node = n as usize;
-                    off = o;
-                    break;
-                }
-            }
-        }
-    }
-}
-
-/// Median split of `s` at `mid` on the widest axis of its points.
-fn split(s: &mut [[f32; 4]], mid: usize) -> Node {
-    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
-    for p in s.iter() {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-    let dim = if ext[0] >= ext[1] && ext[0] >= ext[2] {
-        0
-    } else if ext[1] >= ext[2] {
-        1
-    } else {
-        2
-    };
-    s.select_nth_unstable_by(mid, |a, b| a[dim].total_cmp(&b[dim]));
-    Node {
-        split: s[mid][dim],
-        dim: dim as u32,
-    }
-}
 
 /// Photons and the kd-tree over their positions. `Send + Sync`.
 ///
@@ -251,20 +84,27 @@ impl PhotonMap {
             return r2.max(0.0);
         }
         let q = p.to_array();
+        let q4 = splat(q);
         let mut bound = inclusive(r2);
-        self.tree.search(q, &mut bound, |pts, bound| {
-            for pt in pts {
-                let d2 = dist2(pt, q);
-                if d2 < *bound {
-                    let e = (pt[3].to_bits(), d2);
-                    if out.len() < k {
-                        heap_push(out, e);
-                        if out.len() == k {
+        self.tree.search(q, &mut bound, |quads, bound| {
+            for quad in quads {
+                let d = quad.dist2(&q4);
+                let mut lanes = Quad::below(d, *bound);
+                while lanes != 0 {
+                    let l = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    // The bound may have shrunk since the quad's test.
+                    if d[l] < *bound {
+                        let e = (quad.id[l], d[l]);
+                        if out.len() < k {
+                            heap_push(out, e);
+                            if out.len() == k {
+                                *bound = out[0].1;
+                            }
+                        } else {
+                            heap_replace_top(out, e);
                             *bound = out[0].1;
                         }
-                    } else {
-                        heap_replace_top(out, e);
-                        *bound = out[0].1;
                     }
                 }
             }
@@ -283,12 +123,16 @@ impl PhotonMap {
             return;
         }
         let q = p.to_array();
+        let q4 = splat(q);
         let mut bound = inclusive(radius * radius);
-        self.tree.search(q, &mut bound, |pts, bound| {
-            for pt in pts {
-                let d2 = dist2(pt, q);
-                if d2 < *bound {
-                    out.push((pt[3].to_bits(), d2));
+        self.tree.search(q, &mut bound, |quads, bound| {
+            for quad in quads {
+                let d = quad.dist2(&q4);
+                let mut lanes = Quad::below(d, *bound);
+                while lanes != 0 {
+                    let l = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    out.push((quad.id[l], d[l]));
                 }
             }
         });
@@ -345,22 +189,6 @@ pub fn irradiance_within(
     } else {
         Rgb::BLACK
     }
-}
-
-/// Smallest bound `b` with `d2 < b` exactly when `d2 <= r2`.
-#[inline]
-pub(crate) fn inclusive(r2: f32) -> f32 {
-    if r2.is_finite() {
-        f32::from_bits(r2.to_bits() + 1)
-    } else {
-        r2
-    }
-}
-
-#[inline(always)]
-pub(crate) fn dist2(pt: &[f32; 4], q: [f32; 3]) -> f32 {
-    let (dx, dy, dz) = (pt[0] - q[0], pt[1] - q[1], pt[2] - q[2]);
-    dx * dx + dy * dy + dz * dz
 }
 
 /// Max-heap on the distance.

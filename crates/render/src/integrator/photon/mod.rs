@@ -14,6 +14,7 @@ pub mod camera;
 pub mod connect;
 mod disc_grid;
 pub mod gather;
+mod kdtree;
 pub mod map;
 pub mod pass;
 pub mod photon;

@@ -23,7 +23,7 @@
 //! estimate shares photons with the radii it uses (as any k-nearest
 //! estimate does), which affects one iteration out of many.
 
-use super::map::{dist2, inclusive, KdTree, PhotonMap};
+use super::map::{inclusive, splat, KdTree, PhotonMap, Quad};
 use super::progressive::Progressive;
 use super::radiance::Points;
 use super::{PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
@@ -169,14 +169,21 @@ impl RadiusField {
     /// The nearest sample within `max_radius`, in leaf order.
     fn nearest(&self, p: Vec3) -> Option<usize> {
         let q = p.to_array();
+        let q4 = splat(q);
         let mut bound = inclusive(self.max_radius * self.max_radius);
         let mut best = None;
-        self.tree.search(q, &mut bound, |pts, bound| {
-            for pt in pts {
-                let d2 = dist2(pt, q);
-                if d2 < *bound {
-                    *bound = d2;
-                    best = Some(pt[3].to_bits() as usize);
+        self.tree.search(q, &mut bound, |quads, bound| {
+            for quad in quads {
+                let d = quad.dist2(&q4);
+                let mut lanes = Quad::below(d, *bound);
+                while lanes != 0 {
+                    let l = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    // The bound may have shrunk since the quad's test.
+                    if d[l] < *bound {
+                        *bound = d[l];
+                        best = Some(quad.id[l] as usize);
+                    }
                 }
             }
         });

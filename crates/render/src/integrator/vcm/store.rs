@@ -6,7 +6,7 @@
 
 use crate::integrator::bdpt::vertex::{Kind, Vertex};
 use crate::integrator::bdpt::walk;
-use crate::integrator::photon::map::{dist2, inclusive, KdTree};
+use crate::integrator::photon::map::{inclusive, splat, KdTree, Quad};
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
 use lumis_math::{Sampler, SamplerKind, Vec3};
@@ -115,11 +115,15 @@ impl LightPaths {
     /// vertex within `radius` of `p`.
     pub fn within(&self, p: Vec3, radius: f32, mut f: impl FnMut(&[Vertex])) {
         let q = p.to_array();
+        let q4 = splat(q);
         let mut bound = inclusive(radius * radius);
-        self.tree.search(q, &mut bound, |pts, bound| {
-            for pt in pts {
-                if dist2(pt, q) < *bound {
-                    let v = self.mergeable[pt[3].to_bits() as usize] as usize;
+        self.tree.search(q, &mut bound, |quads, bound| {
+            for quad in quads {
+                let mut lanes = Quad::below(quad.dist2(&q4), *bound);
+                while lanes != 0 {
+                    let l = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    let v = self.mergeable[quad.id[l] as usize] as usize;
                     let a = self.starts[self.path_of[v] as usize] as usize;
                     f(&self.vertices[a..=v]);
                 }
