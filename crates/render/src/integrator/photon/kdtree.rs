@@ -152,6 +152,18 @@ impl KdTree {
         order
     }
 
+    /// The points' positions, by index (the build's, or leaf order after
+    /// [`KdTree::reindex_to_leaf_order`]).
+    pub(crate) fn positions(&self) -> Vec<Vec3> {
+        let mut pos = vec![Vec3::ZERO; self.len];
+        for q in &self.quads {
+            for l in (0..4).filter(|&l| q.id[l] != u32::MAX) {
+                pos[q.id[l] as usize] = Vec3::new(q.x[l], q.y[l], q.z[l]);
+            }
+        }
+        pos
+    }
+
     /// Visits every leaf that may hold a point at squared distance < `*bound`
     /// from `q`, nearest first; `leaf` may shrink `bound`.
     #[inline(always)]

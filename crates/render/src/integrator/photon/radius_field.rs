@@ -23,6 +23,7 @@
 //! estimate shares photons with the radii it uses (as any k-nearest
 //! estimate does), which affects one iteration out of many.
 
+use super::disc_grid::DiscGrid;
 use super::map::{inclusive, splat, KdTree, PhotonMap, Quad};
 use super::progressive::Progressive;
 use super::radiance::Points;
@@ -47,6 +48,8 @@ pub struct RadiusField {
     share: Vec<(f32, f32)>,
     /// The largest radius: where no sample lies within it, and the cap.
     max_radius: f32,
+    /// The samples' nearest lookup (None: the tree's).
+    grid: Option<DiscGrid>,
 }
 
 impl RadiusField {
@@ -57,6 +60,7 @@ impl RadiusField {
             r2: Vec::new(),
             share: Vec::new(),
             max_radius: radius,
+            grid: None,
         }
     }
 
@@ -132,6 +136,7 @@ impl RadiusField {
         let mut tree = KdTree::build(idx.iter().map(|&i| map.photon(i).pos()), LEAF);
         let order = tree.reindex_to_leaf_order();
         RadiusField {
+            grid: None,
             tree,
             r2: order.iter().map(|&j| r2[j as usize]).collect(),
             share: match shares {
@@ -140,6 +145,19 @@ impl RadiusField {
             },
             max_radius,
         }
+    }
+
+    /// The field with its samples listed on a hashed grid for
+    /// [`r2_at`](Self::r2_at) and [`at`](Self::at) (the caustic field, read
+    /// at every camera path's shading point): each sample is a ball of
+    /// radius `max_radius`, so the nearest ball holding a point is the
+    /// nearest sample within `max_radius` (`disc_grid.rs`; the same sample
+    /// as the tree's but where two lie at exactly the same distance).
+    pub fn with_grid(mut self) -> RadiusField {
+        let pos = self.tree.positions();
+        let balls = vec![self.max_radius * self.max_radius; pos.len()];
+        self.grid = DiscGrid::build(&pos, &balls, 1.0, usize::MAX);
+        self
     }
 
     /// `r_0(p)^2`: the nearest sample's within `max_radius`, else
@@ -168,6 +186,10 @@ impl RadiusField {
 
     /// The nearest sample within `max_radius`, in leaf order.
     fn nearest(&self, p: Vec3) -> Option<usize> {
+        if let Some(g) = &self.grid {
+            let bound = inclusive(self.max_radius * self.max_radius);
+            return g.nearest(p, bound, |_, _| true).map(|i| i as usize);
+        }
         let q = p.to_array();
         let q4 = splat(q);
         let mut bound = inclusive(self.max_radius * self.max_radius);
@@ -206,7 +228,10 @@ impl RadiusField {
     }
 
     pub fn memory_bytes(&self) -> usize {
-        self.tree.memory_bytes() + self.r2.capacity() * 4 + self.share.capacity() * 8
+        self.tree.memory_bytes()
+            + self.r2.capacity() * 4
+            + self.share.capacity() * 8
+            + self.grid.as_ref().map_or(0, DiscGrid::memory_bytes)
     }
 }
 
@@ -248,10 +273,12 @@ impl RadiusFields {
             (true, _) => RadiusField::constant(p.initial_radius),
             (false, false) => {
                 RadiusField::with_shares(&maps.caustic, s.nearest, maps.max_radius, false, shares)
+                    .with_grid()
             }
             (false, true) => {
                 let k = flux_equivalent_k(&maps.caustic, s.nearest, maps.phi);
                 RadiusField::with_shares(&maps.caustic, k, maps.max_radius, true, shares)
+                    .with_grid()
             }
         };
         let global = RadiusField::from_map(&maps.global, s.nearest, global_max, false);
@@ -386,6 +413,52 @@ mod tests {
         // Far from every photon: the largest radius.
         assert_eq!(f.r2_at(Vec3::new(100.0, 0.0, 0.0)), 25.0);
         assert_eq!(RadiusField::constant(0.5).r2_at(Vec3::ZERO), 0.25);
+    }
+
+    /// The grid's nearest sample is the tree's: random photons in clusters
+    /// of different densities (no two at the same distance from a query),
+    /// queries near them, on the largest radius's edge and far away.
+    #[test]
+    fn the_grid_finds_the_trees_sample() {
+        let mut s = 5u32;
+        let mut rnd = || {
+            s = s.wrapping_mul(1664525).wrapping_add(1013904223);
+            (s >> 8) as f32 / (1u32 << 24) as f32
+        };
+        let mut v = Vec::new();
+        for (c, spread, n) in [(0.0, 1.0, 3000), (3.0, 0.05, 500), (-2.0, 4.0, 200)] {
+            for _ in 0..n {
+                let p = Vec3::new(c + spread * rnd(), c + spread * rnd(), 0.1 * rnd());
+                v.push(Photon::new(p, Rgb::WHITE, Vec3::Z, 1.0));
+            }
+        }
+        let len = v.len() as u64;
+        let map = PhotonMap::build(v, len);
+        let tree = RadiusField::from_map(&map, 9, 0.3, false);
+        let grid = RadiusField::from_map(&map, 9, 0.3, false).with_grid();
+        assert!(grid.grid.is_some() && tree.grid.is_none());
+        let (mut found, mut none) = (0, 0);
+        for i in 0..20_000 {
+            let q = match i % 3 {
+                0 => Vec3::new(6.0 * rnd() - 2.5, 6.0 * rnd() - 2.5, 0.4 * rnd() - 0.2),
+                // Just inside or outside the largest radius of a photon.
+                1 => {
+                    let p = map.photon(i % map.len() as u32).pos();
+                    let d = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+                    p + d * 0.3 * (0.999 + 0.002 * rnd())
+                }
+                _ => map.photon(i % map.len() as u32).pos() + 0.01 * Vec3::splat(rnd()),
+            };
+            let want = tree.nearest(q);
+            assert_eq!(grid.nearest(q), want, "at {q}");
+            assert_eq!(grid.at(q, 0.5), tree.at(q, 0.5));
+            if want.is_some() {
+                found += 1;
+            } else {
+                none += 1;
+            }
+        }
+        assert!(found > 5000 && none > 2000, "{found} {none}");
     }
 
     #[test]
