@@ -13,7 +13,9 @@
 //! points at exactly the same distance, the lowest index), with no descent
 //! and no backtracking: a gather-ray hit reads one contiguous run of
 //! candidates. A grid built for some discs serves any smaller ones
-//! (`radiance.rs` keeps one until the discs halve in area).
+//! (`radiance.rs` keeps one until the discs halve in area). The caustic
+//! radius field uses it too, every sample a ball of the field's largest
+//! radius (`RadiusField::with_grid`).
 
 use super::map::dist2;
 use lumis_math::Vec3;
