@@ -49,8 +49,9 @@ fn progressive_is_independent_of_threads_and_resumes_bit_identically() {
     assert!(!same_bits(&full.film, &single.film));
     // Memory stays at one iteration's maps: the photons, their trees and
     // the radiance photons as the single map of the same size, plus the
-    // radiance photons' lookup grid (which one map does not build); and a
-    // render of four times the iterations peaks at the same.
+    // radiance photons' lookup grid and the radius fields (which one map
+    // does not build); and a render of four times the iterations peaks at
+    // the same.
     let one = single.photon_stats.unwrap().memory_bytes as f64;
     let maps = (stats.memory_bytes - stats.grid_bytes) as f64;
     assert!(maps < 1.1 * one, "{maps} vs {one}");
@@ -64,8 +65,8 @@ fn progressive_is_independent_of_threads_and_resumes_bit_identically() {
         stats.memory_bytes
     );
     eprintln!(
-        "DBG maps {maps} one {one} grid {} long {} long grid {}",
-        stats.grid_bytes, long.memory_bytes, long.grid_bytes
+        "maps {maps} B (one map {one}), grid and fields {} B; 12 iterations {} B",
+        stats.grid_bytes, long.memory_bytes
     );
     // Stopped inside an iteration (3) and at its end (4); resumed through the
     // checkpoint format on another thread count.

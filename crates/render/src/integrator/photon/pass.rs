@@ -22,8 +22,9 @@ pub struct PhotonStats {
     pub build_time: Duration,
     pub radiance_time: Duration,
     pub memory_bytes: usize,
-    /// Of `memory_bytes`, the radiance photons' lookup grid (progressive
-    /// iterations; its peak).
+    /// Of `memory_bytes`, what progressive iterations keep beside the maps
+    /// (their peak): the radiance photons' lookup grid and the radius
+    /// fields (the caustic one with its own grid), built once per render.
     pub grid_bytes: usize,
     /// Progressive iterations begun (0 without the progressive mode); the
     /// counts and times are then sums over them and the memory their peak.
@@ -255,7 +256,11 @@ impl PhotonMaps {
             + self.volume_global.memory_bytes()
             + self.volume_caustic.memory_bytes()
             + self.radiance.as_ref().map_or(0, |r| r.memory_bytes());
-        st.grid_bytes = self.radiance.as_ref().map_or(0, |r| r.grid_bytes());
+        let fields = radii
+            .as_ref()
+            .map_or(0, |r| r.caustic.memory_bytes() + r.global.memory_bytes());
+        st.memory_bytes += fields;
+        st.grid_bytes = self.radiance.as_ref().map_or(0, |r| r.grid_bytes()) + fields;
         st.caustic_radius = radii
             .as_ref()
             .map_or(0.0, |r| (r.caustic.median_r2() * r.scale2).sqrt());
