@@ -38,6 +38,12 @@ const AXIS_BITS: u32 = 21;
 /// An unused slot's key.
 const EMPTY: u64 = u64::MAX;
 
+const EMPTY_SLOT: Slot = Slot {
+    key: EMPTY,
+    start: 0,
+    end: 0,
+};
+
 /// A cell's key and its run of candidates: one cache line's quarter, so
 /// a lookup's first read brings both.
 #[derive(Clone, Copy, Debug)]
@@ -114,61 +120,81 @@ impl DiscGrid {
         if estimate(&radii, h) > (u32::MAX / 2) as f64 {
             return None;
         }
-        // Every (cell, point) pair, grouped by cell and ordered within it;
-        // cells grown until at most `max_cells` list candidates.
-        let (mut g, pairs, cells) = loop {
+        // Cells grown until at most `max_cells` list candidates: count each
+        // cell's candidates in the hash table, then write every cell's run
+        // in place and order it (no list of (cell, point) pairs beside the
+        // candidates, which doubled the build's peak memory).
+        let mut g = loop {
             let inv_h = 1.0 / h;
-            let g = DiscGrid {
+            let mut g = DiscGrid {
                 lo,
                 h,
                 inv_h,
                 dims: [0, 1, 2].map(|d| ((hi[d] - lo[d]) * inv_h).floor() as i64 + 1),
-                slots: Vec::new(),
+                slots: vec![EMPTY_SLOT; 1024],
                 cells: 0,
                 cand: Vec::new(),
             };
-            let mut pairs: Vec<(u64, f32, u32)> = Vec::new();
-            g.for_each_cell(pos, &radii, |g, c, i| {
-                let p = pos[i];
-                pairs.push((key(c), dist2(&[p.x, p.y, p.z, 0.0], g.centre(c)), i as u32));
+            let mut too_many = false;
+            g.for_each_cell(pos, &radii, |g, c, _| {
+                if too_many {
+                    return;
+                }
+                let s = g.insert(key(c));
+                g.slots[s].end += 1;
+                too_many = g.cells > max_cells;
             });
-            pairs.sort_unstable_by(|a, b| {
-                (a.0.cmp(&b.0))
-                    .then(a.1.total_cmp(&b.1))
-                    .then(a.2.cmp(&b.2))
-            });
-            let cells = pairs.chunk_by(|a, b| a.0 == b.0).count();
-            if cells <= max_cells {
-                break (g, pairs, cells);
+            if !too_many {
+                break g;
             }
             h *= 1.25;
         };
-        let empty = Slot {
-            key: EMPTY,
-            start: 0,
-            end: 0,
-        };
-        g.slots = vec![empty; (2 * cells).next_power_of_two()];
-        g.cells = cells;
-        g.cand = pairs
-            .iter()
-            .map(|&(_, _, i)| {
-                let p = pos[i as usize];
-                [p.x, p.y, p.z, f32::from_bits(i)]
-            })
-            .collect();
-        let mut start = 0u32;
-        for run in pairs.chunk_by(|a, b| a.0 == b.0) {
-            let end = start + run.len() as u32;
-            let s = g.probe(run[0].0);
-            g.slots[s] = Slot {
-                key: run[0].0,
-                start,
-                end,
-            };
-            start = end;
+        // Runs in slot order: `start` is the run's start, `end` first its
+        // count and then, while filling, its cursor.
+        let mut total = 0u32;
+        for slot in g.slots.iter_mut().filter(|s| s.key != EMPTY) {
+            slot.start = total;
+            total += slot.end;
+            slot.end = slot.start;
         }
+        let mut cand = vec![[0.0f32; 4]; total as usize];
+        g.for_each_cell(pos, &radii, |g, c, i| {
+            let s = g.probe(key(c));
+            let p = pos[i];
+            cand[g.slots[s].end as usize] = [p.x, p.y, p.z, f32::from_bits(i as u32)];
+            g.slots[s].end += 1;
+        });
+        for slot in g.slots.iter().filter(|s| s.key != EMPTY) {
+            let centre = g.centre(cell_of(slot.key));
+            let run = &mut cand[slot.start as usize..slot.end as usize];
+            run.sort_unstable_by(|a, b| {
+                (dist2(a, centre).total_cmp(&dist2(b, centre)))
+                    .then(a[3].to_bits().cmp(&b[3].to_bits()))
+            });
+        }
+        g.cand = cand;
         Some(g)
+    }
+
+    /// The slot of `key`, taken if new; the table doubles before it is
+    /// half full.
+    fn insert(&mut self, key: u64) -> usize {
+        let s = self.probe(key);
+        if self.slots[s].key == key {
+            return s;
+        }
+        if 2 * (self.cells + 1) > self.slots.len() {
+            let grown = vec![EMPTY_SLOT; 2 * self.slots.len()];
+            let old = std::mem::replace(&mut self.slots, grown);
+            for slot in old.into_iter().filter(|s| s.key != EMPTY) {
+                let t = self.probe(slot.key);
+                self.slots[t] = slot;
+            }
+            return self.insert(key);
+        }
+        self.slots[s].key = key;
+        self.cells += 1;
+        s
     }
 
     fn hash(&self, key: u64) -> usize {
@@ -192,10 +218,10 @@ impl DiscGrid {
 
     /// `f(grid, cell, point)` for every cell each point's ball meets.
     fn for_each_cell(
-        &self,
+        &mut self,
         pos: &[Vec3],
         radii: &[f32],
-        mut f: impl FnMut(&DiscGrid, [i64; 3], usize),
+        mut f: impl FnMut(&mut DiscGrid, [i64; 3], usize),
     ) {
         let (lo, h, inv_h, dims) = (self.lo, self.h, self.inv_h, self.dims);
         for (i, (p, &r)) in pos.iter().zip(radii).enumerate() {
@@ -290,6 +316,12 @@ impl DiscGrid {
 
 fn key(c: [i64; 3]) -> u64 {
     c[0] as u64 | (c[1] as u64) << AXIS_BITS | (c[2] as u64) << (2 * AXIS_BITS)
+}
+
+/// The cell of a key.
+fn cell_of(key: u64) -> [i64; 3] {
+    let mask = (1u64 << AXIS_BITS) - 1;
+    [0, 1, 2].map(|d| ((key >> (d as u32 * AXIS_BITS)) & mask) as i64)
 }
 
 fn median(v: &[f32]) -> f32 {
