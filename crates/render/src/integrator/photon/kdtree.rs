@@ -24,11 +24,11 @@ struct Node {
 /// whose squared distance, infinite, passes no bound.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
-pub(crate) struct Quad {
+struct Quad {
     x: Vec4,
     y: Vec4,
     z: Vec4,
-    pub id: [u32; 4],
+    id: [u32; 4],
 }
 
 impl Quad {
@@ -42,21 +42,21 @@ impl Quad {
     /// Squared distances of the four points to `q` (`q` splatted per axis),
     /// each rounded as [`dist2`] rounds it.
     #[inline(always)]
-    pub fn dist2(&self, q: &[Vec4; 3]) -> Vec4 {
+    fn dist2(&self, q: &[Vec4; 3]) -> Vec4 {
         let (dx, dy, dz) = (self.x - q[0], self.y - q[1], self.z - q[2]);
         dx * dx + dy * dy + dz * dz
     }
 
     /// The lanes whose squared distance `d2` is below `bound`, as bits.
     #[inline(always)]
-    pub fn below(d2: Vec4, bound: f32) -> u32 {
+    fn below(d2: Vec4, bound: f32) -> u32 {
         d2.cmplt(Vec4::splat(bound)).bitmask()
     }
 }
 
 /// `q` splatted per axis, for [`Quad::dist2`].
 #[inline(always)]
-pub(crate) fn splat(q: [f32; 3]) -> [Vec4; 3] {
+fn splat(q: [f32; 3]) -> [Vec4; 3] {
     q.map(Vec4::splat)
 }
 
@@ -164,15 +164,36 @@ impl KdTree {
         pos
     }
 
-    /// Visits every leaf that may hold a point at squared distance < `*bound`
-    /// from `q`, nearest first; `leaf` may shrink `bound`.
+    /// Calls `f(index, d2, bound)` for every point at squared distance
+    /// `d2 < *bound` from `q`, leaves nearest first; `f` may shrink `bound`
+    /// (each point is tested against the bound as it is then).
     #[inline(always)]
-    pub(crate) fn search(
+    pub(crate) fn for_each_within(
         &self,
         q: [f32; 3],
         bound: &mut f32,
-        mut leaf: impl FnMut(&[Quad], &mut f32),
+        mut f: impl FnMut(u32, f32, &mut f32),
     ) {
+        let q4 = splat(q);
+        self.search(q, bound, |quads, bound| {
+            for quad in quads {
+                let d = quad.dist2(&q4);
+                let mut lanes = Quad::below(d, *bound);
+                while lanes != 0 {
+                    let l = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    if d[l] < *bound {
+                        f(quad.id[l], d[l], bound);
+                    }
+                }
+            }
+        });
+    }
+
+    /// Visits every leaf that may hold a point at squared distance < `*bound`
+    /// from `q`, nearest first; `leaf` may shrink `bound`.
+    #[inline(always)]
+    fn search(&self, q: [f32; 3], bound: &mut f32, mut leaf: impl FnMut(&[Quad], &mut f32)) {
         if self.quads.is_empty() {
             return;
         }
@@ -288,21 +309,9 @@ mod tests {
                     .collect();
                 let mut got = Vec::new();
                 let mut bound = inclusive(r2);
-                let q4 = splat(q);
-                tree.search(q, &mut bound, |quads, bound| {
-                    for quad in quads {
-                        let d = quad.dist2(&q4);
-                        let mut m = Quad::below(d, *bound);
-                        while m != 0 {
-                            let l = m.trailing_zeros() as usize;
-                            m &= m - 1;
-                            assert_eq!(
-                                d[l],
-                                dist2(&pts[quad.id[l] as usize].extend(0.0).to_array(), q)
-                            );
-                            got.push(quad.id[l]);
-                        }
-                    }
+                tree.for_each_within(q, &mut bound, |i, d2, _| {
+                    assert_eq!(d2, dist2(&pts[i as usize].extend(0.0).to_array(), q));
+                    got.push(i);
                 });
                 got.sort_unstable();
                 want.sort_unstable();

@@ -3,7 +3,7 @@
 //! reordered into the tree's leaf order so that a query's photons are close
 //! in memory.
 
-pub(crate) use super::kdtree::{dist2, inclusive, splat, KdTree, Quad};
+pub(crate) use super::kdtree::{dist2, inclusive, KdTree};
 use super::photon::Photon;
 use lumis_math::{Rgb, Vec3, PI};
 
@@ -83,32 +83,19 @@ impl PhotonMap {
         if k == 0 || !(max_radius >= 0.0) {
             return r2.max(0.0);
         }
-        let q = p.to_array();
-        let q4 = splat(q);
         let mut bound = inclusive(r2);
-        self.tree.search(q, &mut bound, |quads, bound| {
-            for quad in quads {
-                let d = quad.dist2(&q4);
-                let mut lanes = Quad::below(d, *bound);
-                while lanes != 0 {
-                    let l = lanes.trailing_zeros() as usize;
-                    lanes &= lanes - 1;
-                    // The bound may have shrunk since the quad's test.
-                    if d[l] < *bound {
-                        let e = (quad.id[l], d[l]);
-                        if out.len() < k {
-                            heap_push(out, e);
-                            if out.len() == k {
-                                *bound = out[0].1;
-                            }
-                        } else {
-                            heap_replace_top(out, e);
-                            *bound = out[0].1;
-                        }
+        self.tree
+            .for_each_within(p.to_array(), &mut bound, |i, d2, bound| {
+                if out.len() < k {
+                    heap_push(out, (i, d2));
+                    if out.len() == k {
+                        *bound = out[0].1;
                     }
+                } else {
+                    heap_replace_top(out, (i, d2));
+                    *bound = out[0].1;
                 }
-            }
-        });
+            });
         if out.len() == k {
             out[0].1
         } else {
@@ -122,20 +109,9 @@ impl PhotonMap {
         if !(radius >= 0.0) {
             return;
         }
-        let q = p.to_array();
-        let q4 = splat(q);
         let mut bound = inclusive(radius * radius);
-        self.tree.search(q, &mut bound, |quads, bound| {
-            for quad in quads {
-                let d = quad.dist2(&q4);
-                let mut lanes = Quad::below(d, *bound);
-                while lanes != 0 {
-                    let l = lanes.trailing_zeros() as usize;
-                    lanes &= lanes - 1;
-                    out.push((quad.id[l], d[l]));
-                }
-            }
-        });
+        self.tree
+            .for_each_within(p.to_array(), &mut bound, |i, d2, _| out.push((i, d2)));
     }
 }
 

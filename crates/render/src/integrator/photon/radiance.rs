@@ -13,7 +13,7 @@
 //! bias of about one photon per disc that grows as the discs shrink.
 
 use super::disc_grid::DiscGrid;
-use super::map::{inclusive, irradiance_knn, irradiance_within, splat, KdTree, PhotonMap, Quad};
+use super::map::{inclusive, irradiance_knn, irradiance_within, KdTree, PhotonMap};
 use super::radius_field::RadiusField;
 use lumis_math::{Rgb, Vec3};
 use rayon::prelude::*;
@@ -218,25 +218,15 @@ impl RadiancePhotons {
             let best = g.nearest(p, bound, |i, d2| readable(&meta[i as usize], d2));
             return best.map(|i| self.irradiance[i as usize]);
         }
-        let q = p.to_array();
-        let q4 = splat(q);
         let mut best = None;
-        self.points.tree.search(q, &mut bound, |quads, bound| {
-            for quad in quads {
-                let d = quad.dist2(&q4);
-                let mut lanes = Quad::below(d, *bound);
-                while lanes != 0 {
-                    let l = lanes.trailing_zeros() as usize;
-                    lanes &= lanes - 1;
-                    let (i, d2) = (quad.id[l] as usize, d[l]);
-                    // The bound may have shrunk since the quad's test.
-                    if d2 < *bound && readable(&meta[i], d2) {
-                        *bound = d2;
-                        best = Some(i);
-                    }
+        self.points
+            .tree
+            .for_each_within(p.to_array(), &mut bound, |i, d2, bound| {
+                if readable(&meta[i as usize], d2) {
+                    *bound = d2;
+                    best = Some(i as usize);
                 }
-            }
-        });
+            });
         best.map(|i| self.irradiance[i])
     }
 

@@ -24,7 +24,7 @@
 //! estimate does), which affects one iteration out of many.
 
 use super::disc_grid::DiscGrid;
-use super::map::{inclusive, splat, KdTree, PhotonMap, Quad};
+use super::map::{inclusive, KdTree, PhotonMap};
 use super::progressive::Progressive;
 use super::radiance::Points;
 use super::{PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE, RADIANCE_STRIDE};
@@ -190,25 +190,13 @@ impl RadiusField {
             let bound = inclusive(self.max_radius * self.max_radius);
             return g.nearest(p, bound, |_, _| true).map(|i| i as usize);
         }
-        let q = p.to_array();
-        let q4 = splat(q);
         let mut bound = inclusive(self.max_radius * self.max_radius);
         let mut best = None;
-        self.tree.search(q, &mut bound, |quads, bound| {
-            for quad in quads {
-                let d = quad.dist2(&q4);
-                let mut lanes = Quad::below(d, *bound);
-                while lanes != 0 {
-                    let l = lanes.trailing_zeros() as usize;
-                    lanes &= lanes - 1;
-                    // The bound may have shrunk since the quad's test.
-                    if d[l] < *bound {
-                        *bound = d[l];
-                        best = Some(quad.id[l] as usize);
-                    }
-                }
-            }
-        });
+        self.tree
+            .for_each_within(p.to_array(), &mut bound, |i, d2, bound| {
+                *bound = d2;
+                best = Some(i as usize);
+            });
         best
     }
 

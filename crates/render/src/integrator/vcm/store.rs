@@ -6,7 +6,7 @@
 
 use crate::integrator::bdpt::vertex::{Kind, Vertex};
 use crate::integrator::bdpt::walk;
-use crate::integrator::photon::map::{inclusive, splat, KdTree, Quad};
+use crate::integrator::photon::map::{inclusive, KdTree};
 use crate::integrator::RayCounts;
 use crate::scene::Scene;
 use lumis_math::{Sampler, SamplerKind, Vec3};
@@ -114,21 +114,13 @@ impl LightPaths {
     /// Calls `f` with the light subpath up to and including each mergeable
     /// vertex within `radius` of `p`.
     pub fn within(&self, p: Vec3, radius: f32, mut f: impl FnMut(&[Vertex])) {
-        let q = p.to_array();
-        let q4 = splat(q);
         let mut bound = inclusive(radius * radius);
-        self.tree.search(q, &mut bound, |quads, bound| {
-            for quad in quads {
-                let mut lanes = Quad::below(quad.dist2(&q4), *bound);
-                while lanes != 0 {
-                    let l = lanes.trailing_zeros() as usize;
-                    lanes &= lanes - 1;
-                    let v = self.mergeable[quad.id[l] as usize] as usize;
-                    let a = self.starts[self.path_of[v] as usize] as usize;
-                    f(&self.vertices[a..=v]);
-                }
-            }
-        });
+        self.tree
+            .for_each_within(p.to_array(), &mut bound, |i, _, _| {
+                let v = self.mergeable[i as usize] as usize;
+                let a = self.starts[self.path_of[v] as usize] as usize;
+                f(&self.vertices[a..=v]);
+            });
     }
 
     pub fn memory_bytes(&self) -> usize {
