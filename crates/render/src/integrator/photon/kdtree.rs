@@ -292,11 +292,8 @@ mod tests {
     /// force; the fill lanes are never reported; leaf order is a permutation.
     #[test]
     fn quads_find_what_brute_force_finds() {
-        let mut s = 7u32;
-        let mut rnd = || {
-            s = s.wrapping_mul(1664525).wrapping_add(1013904223);
-            (s >> 8) as f32 / (1u32 << 24) as f32
-        };
+        let mut rng = lumis_math::Pcg32::new(7, 0);
+        let mut rnd = || rng.next_f32();
         for n in [1usize, 5, 17, 1000] {
             let pts: Vec<Vec3> = (0..n).map(|_| Vec3::new(rnd(), rnd(), rnd())).collect();
             let mut tree = KdTree::build(pts.iter().copied(), 16);

@@ -408,11 +408,8 @@ mod tests {
     /// queries near them, on the largest radius's edge and far away.
     #[test]
     fn the_grid_finds_the_trees_sample() {
-        let mut s = 5u32;
-        let mut rnd = || {
-            s = s.wrapping_mul(1664525).wrapping_add(1013904223);
-            (s >> 8) as f32 / (1u32 << 24) as f32
-        };
+        let mut rng = lumis_math::Pcg32::new(5, 0);
+        let mut rnd = || rng.next_f32();
         let mut v = Vec::new();
         for (c, spread, n) in [(0.0, 1.0, 3000), (3.0, 0.05, 500), (-2.0, 4.0, 200)] {
             for _ in 0..n {
