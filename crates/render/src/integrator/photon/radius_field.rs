@@ -417,6 +417,16 @@ mod tests {
                 v.push(Photon::new(p, Rgb::WHITE, Vec3::Z, 1.0));
             }
         }
+        // Alone (no other within the largest radius), so a query near the
+        // largest radius from one has no nearer sample.
+        let alone: Vec<Vec3> = (0..50)
+            .map(|k| Vec3::new(10.0 + k as f32, 10.0, 0.0))
+            .collect();
+        v.extend(
+            alone
+                .iter()
+                .map(|&p| Photon::new(p, Rgb::WHITE, Vec3::Z, 1.0)),
+        );
         let len = v.len() as u64;
         let map = PhotonMap::build(v, len);
         let tree = RadiusField::from_map(&map, 9, 0.3, false);
@@ -428,7 +438,10 @@ mod tests {
                 0 => Vec3::new(6.0 * rnd() - 2.5, 6.0 * rnd() - 2.5, 0.4 * rnd() - 0.2),
                 // Just inside or outside the largest radius of a photon.
                 1 => {
-                    let p = map.photon(i % map.len() as u32).pos();
+                    let p = match i % 2 {
+                        0 => map.photon(i % map.len() as u32).pos(),
+                        _ => alone[i as usize % alone.len()],
+                    };
                     let d = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
                     p + d * 0.3 * (0.999 + 0.002 * rnd())
                 }
