@@ -126,7 +126,7 @@ impl MeshAccel {
         let boxes: Vec<Aabb> = (0..mesh.triangle_count() as u32)
             .map(|t| mesh.bounds(t))
             .collect();
-        let mut bvh = Bvh::build_aligned(&boxes, 4);
+        let mut bvh = Bvh::build_aligned(&boxes, 4, |_| false);
         let tris = TriPackets::build(&bvh.order, |t| (t, Some(mesh.vertices(t))));
         bvh.order = Vec::new();
         MeshAccel { bvh, tris }

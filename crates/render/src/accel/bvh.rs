@@ -72,6 +72,10 @@ struct PrimRef {
     bounds: Aabb,
     centroid: Vec3,
     index: u32,
+    /// A primitive that gets a leaf of its own (an analytic shape: its test
+    /// costs as much as a packet of four triangles, and its box is the only
+    /// cheap way to skip it).
+    alone: bool,
 }
 
 enum BuildNode {
@@ -177,12 +181,13 @@ struct Entry {
 impl Bvh {
     /// Builds over primitives given by their bounds. Empty boxes are skipped.
     pub fn build(bounds: &[Aabb]) -> Bvh {
-        Bvh::build_blocks(bounds, 1)
+        Bvh::build_blocks(bounds, 1, |_| false)
     }
 
     /// [`Bvh::build`] whose SAH counts primitives in blocks of `block`
-    /// (a leaf of up to `block` primitives costs one test).
-    fn build_blocks(bounds: &[Aabb], block: usize) -> Bvh {
+    /// (a leaf of up to `block` primitives costs one test), with each
+    /// primitive `i` for which `alone(i)` holds in a leaf by itself.
+    fn build_blocks(bounds: &[Aabb], block: usize, alone: impl Fn(usize) -> bool) -> Bvh {
         let mut refs: Vec<PrimRef> = bounds
             .iter()
             .enumerate()
@@ -191,6 +196,7 @@ impl Bvh {
                 bounds: *b,
                 centroid: b.center(),
                 index: i as u32,
+                alone: alone(i),
             })
             .collect();
         if refs.is_empty() {
@@ -211,9 +217,10 @@ impl Bvh {
 
     /// [`Bvh::build`] with every leaf starting at a multiple of `align`
     /// slots, so a caller can keep its primitives in packets of `align`; the
-    /// slots between leaves are padding, `u32::MAX` in `order`.
-    pub fn build_aligned(bounds: &[Aabb], align: usize) -> Bvh {
-        let mut bvh = Bvh::build_blocks(bounds, align);
+    /// slots between leaves are padding, `u32::MAX` in `order`. Each
+    /// primitive `i` for which `alone(i)` holds gets a leaf of its own.
+    pub fn build_aligned(bounds: &[Aabb], align: usize, alone: impl Fn(usize) -> bool) -> Bvh {
+        let mut bvh = Bvh::build_blocks(bounds, align, alone);
         let mut leaves = Vec::new();
         for (n, node) in bvh.nodes.iter().enumerate() {
             for i in 0..WIDTH {
@@ -486,14 +493,17 @@ fn flatten(kids: &[&BuildNode], out: &mut Vec<Node>) -> u32 {
     idx as u32
 }
 
-fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
+/// The primitives' bounds, their centroids' bounds, and how many must be alone.
+fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb, usize) {
     let mut b = Aabb::EMPTY;
     let mut c = Aabb::EMPTY;
+    let mut alone = 0;
     for r in refs {
         b = b.union(&r.bounds);
         c.grow(r.centroid);
+        alone += r.alone as usize;
     }
-    (b, c)
+    (b, c, alone)
 }
 
 /// Where a build step is: its depth, and the SAH's block size.
@@ -505,15 +515,19 @@ struct Level {
 
 fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
     let Level { depth, block } = at;
-    let blocks = |n: u32| n.div_ceil(block as u32) as f32;
-    let (bounds, cb) = bounds_of(refs);
+    // A leaf's cost: its blocks of primitives, each lone primitive one more.
+    let blocks = |n: u32, alone: u32| (n - alone).div_ceil(block as u32) as f32 + alone as f32;
+    let (bounds, cb, alone) = bounds_of(refs);
     let n = refs.len();
     let leaf = BuildNode::Leaf {
         bounds,
         start,
         count: n,
     };
-    if n <= block.max(2) {
+    // Whether this may be a leaf: not too many, none that must be alone
+    // among others.
+    let may_leaf = n <= MAX_LEAF && (alone == 0 || n == 1);
+    if n <= block.max(2) && may_leaf {
         return leaf;
     }
     let ext = cb.extent();
@@ -526,14 +540,14 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
     };
     if depth >= MEDIAN_DEPTH {
         // Deep trees: balanced splits bound the depth (and the traversal stack) by 2 * MEDIAN_DEPTH.
-        if n <= MAX_LEAF {
+        if may_leaf {
             return leaf;
         }
         return split_at(refs, start, n / 2, bounds, at);
     }
     if ext[axis] <= 0.0 {
         // All centroids coincide: split in the middle by count if too many for a leaf.
-        if n <= MAX_LEAF {
+        if may_leaf {
             return leaf;
         }
         return split_at(refs, start, n / 2, bounds, at);
@@ -545,31 +559,34 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
             continue;
         }
         let scale = BINS as f32 / ext[ax];
-        let mut counts = [0u32; BINS];
+        // Per bin: primitives, and how many of them must be alone.
+        let mut counts = [(0u32, 0u32); BINS];
         let mut boxes = [Aabb::EMPTY; BINS];
         for r in refs.iter() {
             let b = (((r.centroid[ax] - cb.min[ax]) * scale) as usize).min(BINS - 1);
-            counts[b] += 1;
+            counts[b].0 += 1;
+            counts[b].1 += r.alone as u32;
             boxes[b] = boxes[b].union(&r.bounds);
         }
         let mut right_area = [0f32; BINS];
-        let mut right_count = [0u32; BINS];
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0u32);
+        let mut right_count = [(0u32, 0u32); BINS];
+        let (mut acc, mut cnt) = (Aabb::EMPTY, (0u32, 0u32));
         for i in (1..BINS).rev() {
             acc = acc.union(&boxes[i]);
-            cnt += counts[i];
+            cnt = (cnt.0 + counts[i].0, cnt.1 + counts[i].1);
             right_area[i] = acc.surface_area();
             right_count[i] = cnt;
         }
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0u32);
+        let (mut acc, mut cnt) = (Aabb::EMPTY, (0u32, 0u32));
         for i in 0..BINS - 1 {
             acc = acc.union(&boxes[i]);
-            cnt += counts[i];
-            if cnt == 0 || right_count[i + 1] == 0 {
+            cnt = (cnt.0 + counts[i].0, cnt.1 + counts[i].1);
+            let right = right_count[i + 1];
+            if cnt.0 == 0 || right.0 == 0 {
                 continue;
             }
-            let cost =
-                blocks(cnt) * acc.surface_area() + blocks(right_count[i + 1]) * right_area[i + 1];
+            let cost = blocks(cnt.0, cnt.1) * acc.surface_area()
+                + blocks(right.0, right.1) * right_area[i + 1];
             if cost < best.0 {
                 best = (cost, ax, i);
             }
@@ -577,8 +594,8 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
     }
     let area = bounds.surface_area().max(1e-30);
     let split_cost = TRAVERSAL_COST + best.0 / area;
-    if best.0 == f32::INFINITY || (split_cost >= blocks(n as u32) && n <= MAX_LEAF) {
-        if n <= MAX_LEAF {
+    if best.0 == f32::INFINITY || (split_cost >= blocks(n as u32, alone as u32) && may_leaf) {
+        if may_leaf {
             return leaf;
         }
         return split_at(refs, start, n / 2, bounds, at);
@@ -657,6 +674,40 @@ mod tests {
         assert_eq!(one.closest(&r, |_, _, _| Some(1.5)).map(|h| h.1), Some(0));
         let miss = Ray::new(Vec3::ZERO, -Vec3::ONE.normalize());
         assert!(!one.any(&miss, |_, _, _| true));
+    }
+
+    #[test]
+    fn lone_primitives_get_leaves_of_their_own() {
+        // Small boxes in clusters, every third one to be alone: a leaf
+        // holding one of those holds nothing else, and every box is in
+        // exactly one leaf.
+        let mut rng = lumis_math::Pcg32::new(5, 1);
+        let boxes: Vec<Aabb> = (0..500)
+            .map(|i| {
+                let c = Vec3::new((i % 7) as f32, rng.next_f32() * 0.1, rng.next_f32() * 0.1);
+                Aabb {
+                    min: c,
+                    max: c + Vec3::splat(0.01 + 0.05 * rng.next_f32()),
+                }
+            })
+            .collect();
+        let alone = |i: usize| i.is_multiple_of(3);
+        let bvh = Bvh::build_aligned(&boxes, 4, alone);
+        let mut seen = vec![0u32; boxes.len()];
+        for node in &bvh.nodes {
+            for i in 0..WIDTH {
+                let (start, count) = (node.child[i] as usize, node.count[i] as usize);
+                let slots = &bvh.order[start..start + count];
+                for &p in slots {
+                    seen[p as usize] += 1;
+                    assert!(
+                        count == 1 || !alone(p as usize),
+                        "{p} shares a leaf of {count}"
+                    );
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
     }
 
     #[test]

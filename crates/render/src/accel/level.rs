@@ -4,7 +4,7 @@
 
 use super::tri4::{PacketRay, TriPackets, PADDING};
 use super::{Bvh, PrimInfo};
-use crate::geometry::{Aabb, Ray, Shapes, SurfaceGeom};
+use crate::geometry::{Aabb, Prim, Ray, Shapes, SurfaceGeom};
 use lumis_math::Vec2;
 
 #[derive(Clone, Debug, Default)]
@@ -29,7 +29,10 @@ pub struct LevelHit {
 impl PrimBvh {
     pub fn build(shapes: &Shapes, prims: Vec<PrimInfo>) -> PrimBvh {
         let boxes: Vec<Aabb> = prims.iter().map(|p| shapes.bounds(p.prim)).collect();
-        let mut bvh = Bvh::build_aligned(&boxes, 4);
+        // Analytic shapes each get a leaf: their boxes skip them cheaply,
+        // and a test of one costs about a packet of four triangles.
+        let analytic = |i: usize| !matches!(prims[i].prim, Prim::Triangle { .. });
+        let mut bvh = Bvh::build_aligned(&boxes, 4, analytic);
         // Each lane's id: its primitive's index in the leaf-ordered `prims`.
         let mut next = 0u32;
         let packets = TriPackets::build(&bvh.order, |i| {
