@@ -93,6 +93,11 @@ pub struct BenchArgs {
     /// Folder for the --scaling plots (SVG) [default: lumis-bench-scaling].
     #[arg(long, value_name = "DIR")]
     pub plots: Option<std::path::PathBuf>,
+    /// Instead: the rays of paths through this scene (every segment, and a
+    /// shadow ray at each non-specular vertex), traced again by the
+    /// built-in BVH (and by Embree in a build with the `embree` feature).
+    #[arg(long, value_name = "SCENE", conflicts_with = "scaling")]
+    pub rays: Option<std::path::PathBuf>,
 }
 
 #[derive(Args, Debug, Default, Clone)]

@@ -5,6 +5,7 @@ mod out;
 
 mod args;
 mod bench;
+mod bench_rays;
 mod bench_scaling;
 mod display;
 mod interrupt;

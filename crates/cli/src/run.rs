@@ -21,7 +21,11 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Some(Command::Bench(a)) if a.scaling => {
             crate::bench_scaling::run(&a).map(|_| ExitCode::SUCCESS)
         }
-        Some(Command::Bench(a)) => crate::bench::run(a).map(|_| ExitCode::SUCCESS),
+        Some(Command::Bench(a)) => match &a.rays {
+            Some(scene) => crate::bench_rays::run(scene, a.quick),
+            None => crate::bench::run(a),
+        }
+        .map(|_| ExitCode::SUCCESS),
         Some(Command::Compare(a)) => compare_cmd(a),
         Some(Command::Study(a)) => crate::study::run(a),
         Some(Command::Merge(a)) => merge_cmd(a),

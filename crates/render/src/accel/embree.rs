@@ -285,6 +285,15 @@ impl EmbreeAccel {
         Some(Hit::new(t, geom, world.prims[lh.slot as usize]))
     }
 
+    /// The closest hit's distance only, without its geometry: the
+    /// counterpart of [`super::closest_found`] for `lumis bench --rays`.
+    pub fn closest_t(&self, ray: &Ray) -> Option<f32> {
+        let mut ctx = IntersectContext::incoherent();
+        let mut rh = embree3::RayHit::from(embree_ray(ray));
+        self.top.scene.intersect(&mut ctx, &mut rh);
+        (rh.hit.geomID != INVALID_ID).then_some(rh.ray.tfar)
+    }
+
     /// Whether anything blocks the ray before `ray.tmax`, as [`super::occluded`].
     pub fn occluded(&self, ray: &Ray) -> bool {
         let mut ctx = IntersectContext::incoherent();
