@@ -73,3 +73,67 @@ fn loopsubdiv_through_the_loader() {
         "shading normal from the limit surface"
     );
 }
+
+#[test]
+fn plain_diffuse_hits_are_the_full_hits_bit_for_bit() {
+    // Diffuse walls (one textured), a diffuse sphere, a glass sphere, a
+    // disk and a light: the lazy answer exists exactly on the world's
+    // untextured diffuse triangles and spheres that emit nothing, and there
+    // its point, normal and albedo are those of the full hit and its BSDF.
+    let l = scene(
+        r#"Material "diffuse" "rgb reflectance" [1.5 0.5 0.25]
+           Shape "trianglemesh" "point3 P" [-4 -4 -3  4 -4 -3  4 4 -3  -4 4 -3] "integer indices" [0 1 2 0 2 3]
+           Texture "c" "spectrum" "checkerboard" "float uscale" 4 "float vscale" 4
+           Material "diffuse" "texture reflectance" "c"
+           Shape "trianglemesh" "point3 P" [-4 -4 3  -4 4 3  4 4 3  4 -4 3] "integer indices" [0 1 2 0 2 3]
+           Material "diffuse" "rgb reflectance" [0.2 0.4 0.6]
+           AttributeBegin Translate 1 0.5 0 Scale 1.5 1.5 1.5 Shape "sphere" "float radius" 0.5 AttributeEnd
+           AttributeBegin ReverseOrientation Translate -1 0 0 Shape "sphere" "float radius" 0.7 AttributeEnd
+           AttributeBegin Translate 0 2 0 Shape "disk" "float radius" 0.8 AttributeEnd
+           Material "dielectric"
+           AttributeBegin Translate 0 -2 0 Shape "sphere" "float radius" 0.6 AttributeEnd
+           AttributeBegin AreaLightSource "diffuse" "rgb L" [1 1 1]
+             Material "diffuse"
+             Shape "trianglemesh" "point3 P" [-4 -4 -2.9  4 -4 -2.9  4 -3.5 -2.9] "integer indices" [0 1 2]
+           AttributeEnd"#,
+    );
+    let s = &l.scene;
+    let mut rng = lumis_math::Pcg32::new(11, 2);
+    let (mut plain, mut full) = (0, 0);
+    for _ in 0..20_000 {
+        let mut u = || 2.0 * rng.next_f32() - 1.0;
+        let o = Vec3::new(3.0 * u(), 3.0 * u(), 2.0 * u());
+        let d = Vec3::new(u(), u(), u());
+        if d.length_squared() < 1e-4 {
+            continue;
+        }
+        let ray = Ray::new(o, d.normalize());
+        let Some(lazy) = s.intersect_lazy(&ray) else {
+            assert!(s.intersect(&ray).is_none());
+            continue;
+        };
+        let pd = s.plain_diffuse(&lazy, &ray);
+        let h = s.finish(lazy, &ray);
+        let same = s.intersect(&ray).unwrap();
+        assert_eq!(
+            (h.t, h.geom.p, h.material),
+            (same.t, same.geom.p, same.material)
+        );
+        let m = &s.materials[h.material as usize];
+        let plain_kind = h.light.is_none()
+            && m.constant_diffuse().is_some()
+            && !matches!(h.prim, lumis_render::geometry::Prim::Disk(_));
+        assert_eq!(pd.is_some(), plain_kind, "{:?} {:?}", h.prim, h.material);
+        let Some(pd) = pd else {
+            full += 1;
+            continue;
+        };
+        plain += 1;
+        let albedo = s.bsdf(&h, -ray.d).bsdf.diffuse_albedo().unwrap();
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        assert_eq!(bits(pd.p), bits(h.geom.p));
+        assert_eq!(bits(pd.ng), bits(h.geom.ng));
+        assert_eq!(pd.albedo, albedo);
+    }
+    assert!(plain > 2000 && full > 2000, "{plain} plain, {full} others");
+}

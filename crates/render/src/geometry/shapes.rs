@@ -3,7 +3,7 @@
 //! area, intersection, surface geometry) instead of matching on the kind.
 //! Sampling points on a primitive is in `sample.rs` and `square_map.rs`.
 
-use super::triangle::triangle_geometry;
+use super::triangle::{triangle_geometry, triangle_point};
 use super::{Aabb, Cylinder, Disk, Prim, Ray, Sphere, SurfaceGeom, TriangleMesh};
 use lumis_math::{Vec2, Vec3};
 
@@ -58,6 +58,20 @@ impl Shapes {
             Prim::Sphere(i) => self.spheres[i as usize].geometry_at(ray.at(t)),
             Prim::Disk(i) => self.disks[i as usize].geometry_at(ray.at(t)),
             Prim::Cylinder(i) => self.cylinders[i as usize].geometry_at(ray.at(t)),
+        }
+    }
+
+    /// The point and geometric normal of [`Shapes::geometry`], bit for bit,
+    /// for triangles and spheres (the shapes whose rest costs most); `None`
+    /// for the others.
+    #[inline]
+    pub fn point_normal(&self, p: Prim, ray: &Ray, t: f32, b: Vec2) -> Option<(Vec3, Vec3)> {
+        match p {
+            Prim::Triangle { mesh, tri } => {
+                Some(triangle_point(&self.meshes[mesh as usize], tri, b.x, b.y))
+            }
+            Prim::Sphere(i) => Some(self.spheres[i as usize].point_normal_at(ray.at(t))),
+            _ => None,
         }
     }
 

@@ -135,12 +135,22 @@ impl Sphere {
         self.geometry_object(po)
     }
 
-    fn geometry_object(&self, po: Vec3) -> SurfaceGeom {
+    /// The point and normal of [`Sphere::geometry_at`] alone, without the
+    /// surface parameters and their derivatives (bit for bit the same).
+    pub fn point_normal_at(&self, p_world: Vec3) -> (Vec3, Vec3) {
+        let po = self.on_surface(self.object_to_world.inv.transform_point3(p_world));
+        self.point_normal(po)
+    }
+
+    #[inline]
+    fn point_normal(&self, po: Vec3) -> (Vec3, Vec3) {
         let p = self.object_to_world.point(po);
-        let mut n = self.object_to_world.normal(po).normalize();
-        if self.flip_normals {
-            n = -n;
-        }
+        let n = self.object_to_world.normal(po).normalize();
+        (p, if self.flip_normals { -n } else { n })
+    }
+
+    fn geometry_object(&self, po: Vec3) -> SurfaceGeom {
+        let (p, n) = self.point_normal(po);
         let phi = phi_of(po);
         let theta = (po.z / self.radius).clamp(-1.0, 1.0).acos();
         // pbrt's parameterisation (v = 0 at zmin), for cut spheres too.

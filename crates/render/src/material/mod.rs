@@ -125,6 +125,15 @@ impl Material {
         }
     }
 
+    /// The albedo of a diffuse material with a constant reflectance,
+    /// clamped as its BSDF's is; `None` for any other material.
+    pub fn constant_diffuse(&self) -> Option<Rgb> {
+        match &self.kind {
+            MaterialKind::Diffuse(m) => m.reflectance.constant().map(clamp01),
+            _ => None,
+        }
+    }
+
     pub fn is_interface(&self) -> bool {
         matches!(self.kind, MaterialKind::Interface(_))
     }

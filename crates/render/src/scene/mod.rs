@@ -6,6 +6,9 @@
 
 pub use crate::accel::{Hit, Instance, InstanceSet, PrimInfo, NO_LIGHT};
 pub use crate::geometry::Shapes;
+pub use lazy::{LazyHit, PlainDiffuse};
+
+mod lazy;
 
 use crate::accel::{Instances, PrimBvh};
 
@@ -227,36 +230,6 @@ impl Scene {
             hit = self.intersect_any_alpha(&r);
         }
         None
-    }
-
-    /// [`Scene::intersect`], except that a hit on a material for which
-    /// `ends` holds comes back without its geometry (`Some(None)`): a
-    /// caller whose path ends there by the material alone saves it. (With
-    /// Embree or `alpha` cutouts the hit is computed first either way.)
-    pub fn intersect_unless(
-        &self,
-        ray: &Ray,
-        ends: impl FnOnce(&Material) -> bool,
-    ) -> Option<Option<Hit>> {
-        #[cfg(feature = "embree")]
-        let eager = self.has_alpha || self.embree.is_some();
-        #[cfg(not(feature = "embree"))]
-        let eager = self.has_alpha;
-        if eager {
-            let hit = self.intersect(ray)?;
-            return Some((!ends(&self.materials[hit.material as usize])).then_some(hit));
-        }
-        let found = crate::accel::closest_found(&self.shapes, &self.world, &self.instances, ray)?;
-        let info = found.info(&self.world, &self.instances);
-        if ends(&self.materials[info.material as usize]) {
-            return Some(None);
-        }
-        Some(Some(found.finish(
-            &self.shapes,
-            &self.world,
-            &self.instances,
-            ray,
-        )))
     }
 
     /// [`Scene::intersect`] with the built-in BVH whatever the backend.

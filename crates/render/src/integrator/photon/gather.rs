@@ -195,7 +195,21 @@ pub(super) fn trace_gather(
     let mut specular = false;
     for d in depth + 1..=s.max_depth {
         rays.gather += 1;
-        let mut hit = scene.intersect(&ray);
+        let mut hit = if scene.has_media() {
+            scene.intersect(&ray)
+        } else {
+            // A plain diffuse surface that the radiance photons cover ends
+            // the ray with what `global_radiance` would give there, without
+            // the hit's full geometry and BSDF.
+            let lazy = scene.intersect_lazy(&ray);
+            if let Some(v) = lazy.as_ref().and_then(|l| {
+                let pd = scene.plain_diffuse(l, &ray)?;
+                radiance_photons(ctx, pd.p, pd.ng, -ray.d, pd.albedo)
+            }) {
+                return acc + t * v;
+            }
+            lazy.map(|l| scene.finish(l, &ray))
+        };
         if scene.has_media() {
             // Free flights, and pure boundaries crossed; a gather ray that
             // scatters reads the global volume photons there.
@@ -418,20 +432,12 @@ fn caustic_photons(
 /// over the `nearest` photons or, in progressive iterations, over every
 /// photon in the iteration's fixed disc.
 fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rgb {
-    let n = if y.geom.ng.dot(wo) < 0.0 {
-        -y.geom.ng
-    } else {
-        y.geom.ng
-    };
-    let fixed = ctx.maps.radii.as_ref();
-    let radius = fixed.map_or(ctx.maps.max_radius * GLOBAL_RADIUS_SCALE, |r| {
-        r.global_max()
-    });
-    if let (Some(rp), Some(albedo)) = (&ctx.maps.radiance, bsdf.bsdf.diffuse_albedo()) {
-        if let Some(e) = rp.irradiance(y.geom.p, n, radius) {
-            return e * albedo * (1.0 / PI);
+    if let Some(albedo) = bsdf.bsdf.diffuse_albedo() {
+        if let Some(l) = radiance_photons(ctx, y.geom.p, y.geom.ng, wo, albedo) {
+            return l;
         }
     }
+    let radius = global_radius(ctx);
     let map = &ctx.maps.global;
     SCRATCH.with(|cell| {
         let mut found = cell.borrow_mut();
@@ -453,6 +459,27 @@ fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rg
         }
         sum / (PI * r2)
     })
+}
+
+/// The global photons' largest radius.
+fn global_radius(ctx: &PhotonCtx) -> f32 {
+    let fixed = ctx.maps.radii.as_ref();
+    fixed.map_or(ctx.maps.max_radius * GLOBAL_RADIUS_SCALE, |r| {
+        r.global_max()
+    })
+}
+
+/// Light leaving diffuse point `p` (geometric normal `ng`, `albedo`)
+/// towards `wo` from the radiance photons, if they cover `p`.
+#[inline]
+fn radiance_photons(ctx: &PhotonCtx, p: Vec3, ng: Vec3, wo: Vec3, albedo: Rgb) -> Option<Rgb> {
+    let n = if ng.dot(wo) < 0.0 { -ng } else { ng };
+    let e = ctx
+        .maps
+        .radiance
+        .as_ref()?
+        .irradiance(p, n, global_radius(ctx))?;
+    Some(e * albedo * (1.0 / PI))
 }
 
 /// When the disc's radius is set by the k-th nearest photon, that photon lies
