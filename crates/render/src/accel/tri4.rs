@@ -75,14 +75,16 @@ struct Edges {
     v: [f32; 4],
     w: [f32; 4],
     z: [[f32; 4]; 3],
-    /// Lanes inside (or on) all three edges, or with a zero edge function.
+    /// Lanes inside (or on) all three edges whose distance the scalar end
+    /// would not refuse against the `tmax` given (it only shrinks), or
+    /// with a zero edge function.
     candidates: u32,
     /// Lanes with a zero edge function: the scalar test redoes them.
     zero: u32,
 }
 
 #[inline(always)]
-fn edges(p: &TriPacket, r: &PacketRay) -> Edges {
+fn edges(p: &TriPacket, r: &PacketRay, tmax: f32) -> Edges {
     let (kx, ky, kz) = (r.sh.kx, r.sh.ky, r.sh.kz);
     let mut x = [Vec4::ZERO; 3];
     let mut y = [Vec4::ZERO; 3];
@@ -101,12 +103,24 @@ fn edges(p: &TriPacket, r: &PacketRay) -> Edges {
     let zero = (u.cmpeq(zero4) | v.cmpeq(zero4) | w.cmpeq(zero4)).bitmask();
     let neg = (u.cmplt(zero4) | v.cmplt(zero4) | w.cmplt(zero4)).bitmask();
     let pos = (u.cmpgt(zero4) | v.cmpgt(zero4) | w.cmpgt(zero4)).bitmask();
+    // The distance tests of `watertight_tail`, the same arithmetic lane by
+    // lane: a lane they refuse (the line meets the triangle behind the
+    // origin or beyond `tmax`, the usual case for one of the two walls a
+    // ray's line crosses in a room) skips the scalar end.
+    let sz = Vec4::splat(r.sh.sz);
+    let det = u + v + w;
+    let tt = u * (sz * z[0]) + v * (sz * z[1]) + w * (sz * z[2]);
+    let td = Vec4::splat(tmax) * det;
+    let (below, above) = (det.cmplt(zero4), det.cmpgt(zero4));
+    let refused = det.cmpeq(zero4)
+        | (below & (tt.cmpge(zero4) | tt.cmplt(td)))
+        | (above & (tt.cmple(zero4) | tt.cmpgt(td)));
     Edges {
         u: u.to_array(),
         v: v.to_array(),
         w: w.to_array(),
         z: z.map(|z| z.to_array()),
-        candidates: !(neg & pos) | zero,
+        candidates: (!(neg & pos) & !refused.bitmask()) | zero,
         zero,
     }
 }
@@ -177,7 +191,7 @@ impl TriPackets {
             let p = &self.packets[first as usize / 4];
             let lanes = (1u32 << (end - first).min(4)) - 1;
             let (tris, others) = (p.tris & lanes, !p.tris & lanes);
-            let e = (tris != 0).then(|| edges(p, pr));
+            let e = (tris != 0).then(|| edges(p, pr, tmax));
             let mut todo = others | e.as_ref().map_or(0, |e| e.candidates & tris);
             while todo != 0 {
                 let l = todo.trailing_zeros() as usize;
@@ -212,7 +226,7 @@ impl TriPackets {
             let lanes = (1u32 << (end - first).min(4)) - 1;
             let (tris, others) = (p.tris & lanes, !p.tris & lanes);
             if tris != 0 {
-                let e = edges(p, pr);
+                let e = edges(p, pr, tmax);
                 let mut todo = e.candidates & tris;
                 while todo != 0 {
                     let l = todo.trailing_zeros() as usize;
