@@ -195,6 +195,9 @@ pub(super) fn trace_gather(
     let mut specular = false;
     for d in depth + 1..=s.max_depth {
         rays.gather += 1;
+        // Whether the radiance photons were read here already (and did not
+        // cover the point).
+        let mut read = false;
         let mut hit = if scene.has_media() {
             scene.intersect(&ray)
         } else {
@@ -202,11 +205,11 @@ pub(super) fn trace_gather(
             // the ray with what `global_radiance` would give there, without
             // the hit's full geometry and BSDF.
             let lazy = scene.intersect_lazy(&ray);
-            if let Some(v) = lazy.as_ref().and_then(|l| {
-                let pd = scene.plain_diffuse(l, &ray)?;
-                radiance_photons(ctx, pd.p, pd.ng, -ray.d, pd.albedo)
-            }) {
-                return acc + t * v;
+            if let Some(pd) = lazy.as_ref().and_then(|l| scene.plain_diffuse(l, &ray)) {
+                if let Some(v) = radiance_photons(ctx, pd.p, pd.ng, -ray.d, pd.albedo) {
+                    return acc + t * v;
+                }
+                read = true;
             }
             lazy.map(|l| scene.finish(l, &ray))
         };
@@ -319,7 +322,7 @@ pub(super) fn trace_gather(
                     rays,
                 )
         } else {
-            emitted + global_radiance(ctx, &h, &bsdf, wo)
+            emitted + global_radiance(ctx, &h, &bsdf, wo, read)
         };
         acc += t * here;
         // A delta lobe on this non-delta surface (a smooth coat) continues
@@ -431,8 +434,9 @@ fn caustic_photons(
 /// the nearest radiance photon (diffuse surfaces), else a density estimate
 /// over the `nearest` photons or, in progressive iterations, over every
 /// photon in the iteration's fixed disc.
-fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3) -> Rgb {
-    if let Some(albedo) = bsdf.bsdf.diffuse_albedo() {
+/// `read`: the radiance photons were read at `y` already, in vain.
+fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3, read: bool) -> Rgb {
+    if let Some(albedo) = bsdf.bsdf.diffuse_albedo().filter(|_| !read) {
         if let Some(l) = radiance_photons(ctx, y.geom.p, y.geom.ng, wo, albedo) {
             return l;
         }
