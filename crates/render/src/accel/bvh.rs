@@ -215,10 +215,12 @@ impl Bvh {
         }
     }
 
-    /// [`Bvh::build`] with every leaf starting at a multiple of `align`
-    /// slots, so a caller can keep its primitives in packets of `align`; the
-    /// slots between leaves are padding, `u32::MAX` in `order`. Each
-    /// primitive `i` for which `alone(i)` holds gets a leaf of its own.
+    /// [`Bvh::build`] with every leaf of more than one primitive starting
+    /// at a multiple of `align` slots, so a caller can keep its primitives
+    /// in packets of `align` and test such a leaf a packet at a time; the
+    /// slots between leaves are padding, `u32::MAX` in `order`. Leaves of
+    /// one primitive share packets. Each primitive `i` for which
+    /// `alone(i)` holds gets a leaf of its own.
     pub fn build_aligned(bounds: &[Aabb], align: usize, alone: impl Fn(usize) -> bool) -> Bvh {
         let mut bvh = Bvh::build_blocks(bounds, align, alone);
         let mut leaves = Vec::new();
@@ -232,8 +234,10 @@ impl Bvh {
         leaves.sort_unstable();
         let mut order = Vec::with_capacity(bvh.order.len() + leaves.len() * (align - 1));
         for (start, n, i) in leaves {
-            order.resize(order.len().next_multiple_of(align), u32::MAX);
             let node = &mut bvh.nodes[n];
+            if node.count[i] > 1 {
+                order.resize(order.len().next_multiple_of(align), u32::MAX);
+            }
             node.child[i] = order.len() as u32;
             order.extend_from_slice(&bvh.order[start as usize..(start + node.count[i]) as usize]);
         }

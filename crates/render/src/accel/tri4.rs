@@ -164,6 +164,15 @@ impl TriPackets {
         self.packets.len() * std::mem::size_of::<TriPacket>()
     }
 
+    /// The packet holding slot `first` and the mask of its lanes from
+    /// `first` up to (not including) slot `end`.
+    #[inline(always)]
+    fn lanes(&self, first: u32, end: u32) -> (&TriPacket, u32) {
+        let o = first % 4;
+        let n = (end - first).min(4 - o);
+        (&self.packets[first as usize / 4], ((1u32 << n) - 1) << o)
+    }
+
     /// Starts loading the packets of leaf slots `start..start + count`.
     #[inline(always)]
     pub fn prefetch(&self, start: u32, count: u32) {
@@ -174,8 +183,9 @@ impl TriPackets {
     }
 
     /// Closest hit in `(0, tmax)` among leaf slots `start..start + count`
-    /// (`start` a multiple of four): `(t, id, barycentrics)`. `analytic(id,
-    /// ray, tmax)` tests the lanes that are not triangles.
+    /// (a leaf of several slots starts a packet; one of one slot may share
+    /// it): `(t, id, barycentrics)`. `analytic(id, ray, tmax)` tests the
+    /// lanes that are not triangles.
     #[inline(always)]
     pub fn closest(
         &self,
@@ -187,9 +197,10 @@ impl TriPackets {
     ) -> Option<(f32, u32, Vec2)> {
         let mut best = None;
         let end = start + count;
-        for first in (start..end).step_by(4) {
-            let p = &self.packets[first as usize / 4];
-            let lanes = (1u32 << (end - first).min(4)) - 1;
+        let mut first = start;
+        while first < end {
+            let (p, lanes) = self.lanes(first, end);
+            first += lanes.count_ones();
             let (tris, others) = (p.tris & lanes, !p.tris & lanes);
             let e = (tris != 0).then(|| edges(p, pr, tmax));
             let mut todo = others | e.as_ref().map_or(0, |e| e.candidates & tris);
@@ -221,9 +232,10 @@ impl TriPackets {
         mut analytic: impl FnMut(u32, &Ray, f32) -> bool,
     ) -> bool {
         let end = start + count;
-        for first in (start..end).step_by(4) {
-            let p = &self.packets[first as usize / 4];
-            let lanes = (1u32 << (end - first).min(4)) - 1;
+        let mut first = start;
+        while first < end {
+            let (p, lanes) = self.lanes(first, end);
+            first += lanes.count_ones();
             let (tris, others) = (p.tris & lanes, !p.tris & lanes);
             if tris != 0 {
                 let e = edges(p, pr, tmax);
@@ -287,7 +299,7 @@ mod tests {
         };
         let mut hits = 0;
         for round in 0..4000 {
-            let count = 1 + round % 7;
+            let count: usize = 1 + round % 7;
             // Vertices on a coarse grid, so edges and vertices are shared and
             // rays from grid points hit them exactly.
             let tris: Vec<[Vec3; 3]> = (0..count)
@@ -295,7 +307,7 @@ mod tests {
                 .collect();
             let order: Vec<u32> = (0..count as u32)
                 .chain(std::iter::repeat(PADDING))
-                .take((count as usize).next_multiple_of(4))
+                .take(count.next_multiple_of(4))
                 .collect();
             let packets = TriPackets::build(&order, |i| (i, Some(tris[i as usize])));
             let o = grid(&mut rng) * 2.0 - Vec3::splat(0.5);
@@ -326,6 +338,26 @@ mod tests {
             let any = packets.any((0, count as u32), &ray, &pr, tmax, |_, _, _| false);
             assert_eq!(any, want.is_some(), "round {round}");
             hits += want.is_some() as u32;
+            // Leaves of one slot anywhere in a packet, and of the slots
+            // from any lane on: each sees its own triangles only.
+            for first in 0..count {
+                for n in [1, count - first] {
+                    let leaf = (first as u32, n as u32);
+                    let (mut want, mut t_cur) = (None, tmax);
+                    for (i, v) in tris.iter().enumerate().skip(first).take(n) {
+                        if let Some((t, b1, b2)) = intersect_triangle(&ray, &sh, v, t_cur) {
+                            t_cur = t;
+                            want = Some((t.to_bits(), i as u32, b1.to_bits(), b2.to_bits()));
+                        }
+                    }
+                    let got = packets
+                        .closest(leaf, &ray, &pr, tmax, |_, _, _| None)
+                        .map(|(t, id, b)| (t.to_bits(), id, b.x.to_bits(), b.y.to_bits()));
+                    assert_eq!(got, want, "round {round}, leaf {leaf:?}");
+                    let any = packets.any(leaf, &ray, &pr, tmax, |_, _, _| false);
+                    assert_eq!(any, want.is_some(), "round {round}, leaf {leaf:?}");
+                }
+            }
         }
         assert!(hits > 400, "too few hits to test anything: {hits}");
     }
