@@ -186,11 +186,10 @@ impl RadiusField {
 
     /// The nearest sample within `max_radius`, in leaf order.
     fn nearest(&self, p: Vec3) -> Option<usize> {
+        let mut bound = inclusive(self.max_radius * self.max_radius);
         if let Some(g) = &self.grid {
-            let bound = inclusive(self.max_radius * self.max_radius);
             return g.nearest(p, bound, |_, _| true).map(|i| i as usize);
         }
-        let mut bound = inclusive(self.max_radius * self.max_radius);
         let mut best = None;
         self.tree
             .for_each_within(p.to_array(), &mut bound, |i, d2, bound| {
