@@ -144,7 +144,7 @@ impl MeshAccel {
                     .closest((start, count), r, &pr, tmax, |_, _, _| None)?;
                 Some((t, tri))
             },
-            |start, count| self.tris.prefetch(start, count),
+            |start| self.tris.address(start),
         )
     }
 
@@ -155,7 +155,7 @@ impl MeshAccel {
         self.bvh.any_leaves(
             ray,
             |start, count, r, tmax| self.tris.any((start, count), r, &pr, tmax, |_, _, _| false),
-            |start, count| self.tris.prefetch(start, count),
+            |start| self.tris.address(start),
         )
     }
 

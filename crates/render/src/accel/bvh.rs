@@ -5,7 +5,7 @@
 //! receives the leaf slot (an index into `order`), so the caller can keep
 //! primitive data in BVH order for locality.
 
-use super::mem::{huge_vec, prefetch};
+use super::mem::{huge_vec, prefetch_lines};
 use crate::geometry::{Aabb, Ray};
 use lumis_math::Vec3;
 use lumis_math::Vec4;
@@ -258,15 +258,16 @@ impl Bvh {
         self.nodes.len() * std::mem::size_of::<Node>() + self.order.len() * 4
     }
 
-    /// Starts loading child `i` of `node`: its node, or (through `hint`) its primitives.
+    /// Starts loading child `i` of `node`: the first four cache lines of its
+    /// node, or of its primitives (`leaf_at(start)` is where the caller
+    /// keeps slot `start`'s). Both addresses are computed and one is
+    /// picked without a branch: whether a child is a leaf is unpredictable.
     #[inline(always)]
-    fn prefetch_child(&self, node: &Node, i: usize, hint: &impl Fn(u32, u32)) {
+    fn prefetch_child(&self, node: &Node, i: usize, leaf_at: &impl Fn(u32) -> *const u8) {
         let (child, count) = (node.child[i], node.count[i]);
-        if count > 0 {
-            hint(child, count);
-        } else if let Some(n) = self.nodes.get(child as usize) {
-            prefetch(std::slice::from_ref(n));
-        }
+        let inner = self.nodes.as_ptr().wrapping_add(child as usize) as usize;
+        let leaf = leaf_at(child) as usize & !63;
+        prefetch_lines::<4>(if count > 0 { leaf } else { inner } as *const u8);
     }
 
     /// Closest hit: `test(slot, ray, tmax)` returns the hit distance if the
@@ -277,18 +278,19 @@ impl Bvh {
         ray: &Ray,
         test: impl FnMut(u32, &Ray, f32) -> Option<f32>,
     ) -> Option<(f32, u32)> {
-        self.closest_hinted(ray, test, |_, _| {})
+        self.closest_hinted(ray, test, |_| std::ptr::null())
     }
 
-    /// [`Bvh::closest`] that also calls `hint(start, count)` for each leaf as
-    /// soon as its box is hit (before the leaf is tested, if ever), so the
-    /// caller can prefetch the primitives of slots `start..start + count`.
+    /// [`Bvh::closest`] that also prefetches each leaf's primitives as soon
+    /// as its box is hit (before the leaf is tested, if ever), from
+    /// `leaf_at(start)`, the address of slot `start`'s (any address will
+    /// do: a prefetch never faults).
     #[inline]
     pub fn closest_hinted(
         &self,
         ray: &Ray,
         mut test: impl FnMut(u32, &Ray, f32) -> Option<f32>,
-        hint: impl Fn(u32, u32),
+        leaf_at: impl Fn(u32) -> *const u8,
     ) -> Option<(f32, u32)> {
         self.closest_leaves(
             ray,
@@ -302,7 +304,7 @@ impl Bvh {
                 }
                 best
             },
-            hint,
+            leaf_at,
         )
     }
 
@@ -314,7 +316,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         mut test: impl FnMut(u32, u32, &Ray, f32) -> Option<(f32, u32)>,
-        hint: impl Fn(u32, u32),
+        leaf_at: impl Fn(u32) -> *const u8,
     ) -> Option<(f32, u32)> {
         if self.nodes.is_empty() {
             return None;
@@ -347,9 +349,9 @@ impl Bvh {
                     // Push the hit children far to near; continue with the nearest.
                     let base = sp;
                     while mask != 0 {
-                        let i = mask.trailing_zeros() as usize;
+                        let i = mask.trailing_zeros() as usize & (WIDTH - 1);
                         mask &= mask - 1;
-                        self.prefetch_child(node, i, &hint);
+                        self.prefetch_child(node, i, &leaf_at);
                         let e = Entry {
                             child: node.child[i],
                             count: node.count[i],
@@ -389,21 +391,21 @@ impl Bvh {
     /// Any hit closer than `ray.tmax`: `test(slot, ray, tmax)` says whether the primitive blocks.
     #[inline]
     pub fn any(&self, ray: &Ray, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-        self.any_hinted(ray, test, |_, _| {})
+        self.any_hinted(ray, test, |_| std::ptr::null())
     }
 
-    /// [`Bvh::any`] with a leaf hint as in [`Bvh::closest_hinted`].
+    /// [`Bvh::any`] with leaf prefetches as in [`Bvh::closest_hinted`].
     #[inline]
     pub fn any_hinted(
         &self,
         ray: &Ray,
         mut test: impl FnMut(u32, &Ray, f32) -> bool,
-        hint: impl Fn(u32, u32),
+        leaf_at: impl Fn(u32) -> *const u8,
     ) -> bool {
         self.any_leaves(
             ray,
             |start, count, r, tmax| (start..start + count).any(|slot| test(slot, r, tmax)),
-            hint,
+            leaf_at,
         )
     }
 
@@ -415,7 +417,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         mut test: impl FnMut(u32, u32, &Ray, f32) -> bool,
-        hint: impl Fn(u32, u32),
+        leaf_at: impl Fn(u32) -> *const u8,
     ) -> bool {
         if self.nodes.is_empty() {
             return false;
@@ -435,9 +437,9 @@ impl Bvh {
                 let node = &self.nodes[child as usize];
                 let (_, mut mask) = rb.test(node, tmax * CULL_SLACK);
                 while mask != 0 {
-                    let i = mask.trailing_zeros() as usize;
+                    let i = mask.trailing_zeros() as usize & (WIDTH - 1);
                     mask &= mask - 1;
-                    self.prefetch_child(node, i, &hint);
+                    self.prefetch_child(node, i, &leaf_at);
                     stack[sp] = MaybeUninit::new((node.child[i], node.count[i]));
                     sp += 1;
                 }

@@ -89,7 +89,7 @@ impl PrimBvh {
                 uv = b;
                 Some((t, id))
             },
-            |start, count| self.packets.prefetch(start, count),
+            |start| self.packets.address(start),
         )?;
         Some(LevelHit { t, slot, uv })
     }
@@ -106,7 +106,7 @@ impl PrimBvh {
                         self.analytic(shapes, id, r, tmax).is_some()
                     })
             },
-            |start, count| self.packets.prefetch(start, count),
+            |start| self.packets.address(start),
         )
     }
 

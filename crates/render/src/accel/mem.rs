@@ -40,24 +40,19 @@ fn advise_huge(addr: usize, bytes: usize) {
     }
 }
 
-/// Asks for the cache lines of `items` ahead of their use (a hint; no-op
-/// off x86_64).
+/// Asks for the `LINES` cache lines from `at`, a 64-byte aligned address
+/// (a hint: any address may be given, none is read; no-op off x86_64).
 #[inline(always)]
-pub fn prefetch<T>(items: &[T]) {
+pub fn prefetch_lines<const LINES: usize>(at: *const u8) {
     #[cfg(target_arch = "x86_64")]
-    {
+    for l in 0..LINES {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let start = items.as_ptr() as usize & !63;
-        let end = items.as_ptr() as usize + std::mem::size_of_val(items);
-        let mut p = start;
-        while p < end {
-            // SAFETY: `_mm_prefetch` only needs SSE, part of the x86_64
-            // baseline; a prefetch is a hint that never faults, whatever the
-            // address, and does not change memory.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(p as *const i8) };
-            p += 64;
-        }
+        // SAFETY: `_mm_prefetch` only needs SSE, part of the x86_64
+        // baseline; a prefetch is a hint that never faults, whatever the
+        // address (`wrapping_add` computes it without assuming anything),
+        // and does not change memory.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(at.wrapping_add(64 * l) as *const i8) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = items;
+    let _ = at;
 }

@@ -14,7 +14,7 @@
 //! [`intersect_triangle`] slot by slot. Analytic primitives keep their lanes
 //! and are tested by the caller's function in the same slot order.
 
-use super::mem::{huge_vec, prefetch};
+use super::mem::huge_vec;
 use crate::geometry::triangle::{intersect_triangle, watertight_tail, RayShear};
 use crate::geometry::Ray;
 use lumis_math::{Vec2, Vec3, Vec4};
@@ -173,13 +173,11 @@ impl TriPackets {
         (&self.packets[first as usize / 4], ((1u32 << n) - 1) << o)
     }
 
-    /// Starts loading the packets of leaf slots `start..start + count`.
+    /// Where leaf slot `start`'s packet is, for a prefetch (past the end
+    /// for a slot that is not there: the address is never read).
     #[inline(always)]
-    pub fn prefetch(&self, start: u32, count: u32) {
-        let range = start as usize / 4..(start + count).div_ceil(4) as usize;
-        if let Some(p) = self.packets.get(range) {
-            prefetch(p);
-        }
+    pub fn address(&self, start: u32) -> *const u8 {
+        self.packets.as_ptr().wrapping_add(start as usize / 4) as *const u8
     }
 
     /// Closest hit in `(0, tmax)` among leaf slots `start..start + count`
