@@ -75,9 +75,12 @@ pub fn trace_photons(
             let mut rays = 0u64;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_emit) {
                 sampler.start_stream(i, 0);
-                let connect = connect.map(|margin| Connect {
-                    margin,
-                    rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
+                // Its stream is made only for a photon that is traced.
+                let connect = connect.map(|margin| {
+                    move || Connect {
+                        margin,
+                        rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
+                    }
                 });
                 trace_one(
                     scene,
@@ -130,7 +133,7 @@ fn trace_one(
     n_emit: u64,
     (kind, max_depth): (MapKind, u32),
     (targets, starts): (Option<&Targets>, Option<&Targets>),
-    mut connect: Option<Connect>,
+    connect: Option<impl FnOnce() -> Connect>,
     sampler: &mut Sampler,
     out: &mut Traced,
     rays: &mut u64,
@@ -153,6 +156,16 @@ fn trace_one(
             (le.ray, le.flux_weight() / pmf, le.le)
         }
     };
+    // A caustic photon ends unstored where its first hit has no specular
+    // part, so one whose first ray misses every shape that has one is not
+    // traced at all (most, where those shapes are small).
+    if kind == MapKind::Caustic
+        && !scene.has_media()
+        && starts.is_some_and(|t| !t.may_hit(&ray))
+    {
+        return;
+    }
+    let mut connect = connect.map(|make| make());
     let mut power: Rgb = flux / n_emit as f32;
     if !power.is_finite() || power.is_black() {
         return;
@@ -186,12 +199,8 @@ fn trace_one(
     'bounce: for depth in 0..=max_depth {
         *rays += 1;
         // A caustic photon ends unstored where its first hit has no
-        // specular part: there its hit's geometry is not needed, and where
-        // its ray misses every shape that has one, nor is the hit.
+        // specular part: there its hit's geometry is not needed.
         let mut hit = if kind == MapKind::Caustic && depth == 0 && !scene.has_media() {
-            if starts.is_some_and(|t| !t.may_hit(&ray)) {
-                return;
-            }
             match scene.intersect_unless(&ray, Material::never_delta) {
                 Some(None) => return,
                 found => found.flatten(),
