@@ -146,25 +146,27 @@ fn trace_one(
     // Aimed caustic photons (area, point, spot lights), else ordinary emission.
     let aimed =
         targets.and_then(|t| aimed_emission(scene, t, light, pmf, u1, sampler.get_1d(), u2));
+    // A caustic photon ends unstored where its first hit has no specular
+    // part, so one whose first ray misses every shape that has one is
+    // dropped as soon as its ray is known (most are, where those shapes
+    // are small), before its flux.
+    let dropped = |ray: &Ray| {
+        kind == MapKind::Caustic && !scene.has_media() && starts.is_some_and(|t| !t.may_hit(ray))
+    };
     let (mut ray, flux, le_rgb) = match aimed {
+        Some(Some(e)) if dropped(&e.0) => return,
         Some(Some(e)) => e,
         Some(None) => return,
         None => {
             let Some(le) = light.sample_le(&scene.shapes, u1, u2) else {
                 return;
             };
+            if dropped(&le.ray) {
+                return;
+            }
             (le.ray, le.flux_weight() / pmf, le.le)
         }
     };
-    // A caustic photon ends unstored where its first hit has no specular
-    // part, so one whose first ray misses every shape that has one is not
-    // traced at all (most, where those shapes are small).
-    if kind == MapKind::Caustic
-        && !scene.has_media()
-        && starts.is_some_and(|t| !t.may_hit(&ray))
-    {
-        return;
-    }
     let mut connect = connect.map(|make| make());
     let mut power: Rgb = flux / n_emit as f32;
     if !power.is_finite() || power.is_black() {
