@@ -258,6 +258,12 @@ impl Bvh {
         self.nodes.len() * std::mem::size_of::<Node>() + self.order.len() * 4
     }
 
+    /// Where slot `start`'s entry of `order` is, for a prefetch.
+    #[inline(always)]
+    fn slot_address(&self, start: u32) -> *const u8 {
+        self.order.as_ptr().wrapping_add(start as usize) as *const u8
+    }
+
     /// Starts loading child `i` of `node`: the first four cache lines of its
     /// node, or of its primitives (`leaf_at(start)` is where the caller
     /// keeps slot `start`'s). Both addresses are computed and one is
@@ -271,14 +277,16 @@ impl Bvh {
     }
 
     /// Closest hit: `test(slot, ray, tmax)` returns the hit distance if the
-    /// primitive is hit closer than `tmax`. Returns `(t, slot)`.
+    /// primitive is hit closer than `tmax`. Returns `(t, slot)`. A hit
+    /// leaf's `order` entries are prefetched (a caller that keeps its
+    /// primitives in slot order prefetches them with [`Bvh::closest_hinted`]).
     #[inline]
     pub fn closest(
         &self,
         ray: &Ray,
         test: impl FnMut(u32, &Ray, f32) -> Option<f32>,
     ) -> Option<(f32, u32)> {
-        self.closest_hinted(ray, test, |_| std::ptr::null())
+        self.closest_hinted(ray, test, |start| self.slot_address(start))
     }
 
     /// [`Bvh::closest`] that also prefetches each leaf's primitives as soon
@@ -391,7 +399,7 @@ impl Bvh {
     /// Any hit closer than `ray.tmax`: `test(slot, ray, tmax)` says whether the primitive blocks.
     #[inline]
     pub fn any(&self, ray: &Ray, test: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-        self.any_hinted(ray, test, |_| std::ptr::null())
+        self.any_hinted(ray, test, |start| self.slot_address(start))
     }
 
     /// [`Bvh::any`] with leaf prefetches as in [`Bvh::closest_hinted`].

@@ -92,25 +92,39 @@ impl Instances {
     /// Closest instance hit in (0, ray.tmax).
     pub fn closest(&self, shapes: &Shapes, ray: &Ray) -> Option<InstanceHit> {
         let mut best = None;
-        self.bvh.closest(ray, |slot, r, tmax| {
-            let inst = &self.instances[slot as usize];
-            let ro = Self::object_ray(inst, r, tmax);
-            let hit = self.objects[inst.object as usize].closest(shapes, &ro)?;
-            best = Some(InstanceHit {
-                hit,
-                instance: slot,
-            });
-            Some(hit.t)
-        })?;
+        self.bvh.closest_hinted(
+            ray,
+            |slot, r, tmax| {
+                let inst = &self.instances[slot as usize];
+                let ro = Self::object_ray(inst, r, tmax);
+                let hit = self.objects[inst.object as usize].closest(shapes, &ro)?;
+                best = Some(InstanceHit {
+                    hit,
+                    instance: slot,
+                });
+                Some(hit.t)
+            },
+            |start| self.address(start),
+        )?;
         best
     }
 
     pub fn any(&self, shapes: &Shapes, ray: &Ray) -> bool {
-        self.bvh.any(ray, |slot, r, tmax| {
-            let inst = &self.instances[slot as usize];
-            let ro = Self::object_ray(inst, r, tmax);
-            self.objects[inst.object as usize].any(shapes, &ro)
-        })
+        self.bvh.any_hinted(
+            ray,
+            |slot, r, tmax| {
+                let inst = &self.instances[slot as usize];
+                let ro = Self::object_ray(inst, r, tmax);
+                self.objects[inst.object as usize].any(shapes, &ro)
+            },
+            |start| self.address(start),
+        )
+    }
+
+    /// Where slot `start`'s instance is, for a prefetch (never read).
+    #[inline(always)]
+    fn address(&self, start: u32) -> *const u8 {
+        self.instances.as_ptr().wrapping_add(start as usize) as *const u8
     }
 
     /// The primitive that was hit.

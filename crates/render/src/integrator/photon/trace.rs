@@ -149,10 +149,9 @@ fn trace_one(
     // A caustic photon ends unstored where its first hit has no specular
     // part, so one whose first ray misses every shape that has one is
     // dropped as soon as its ray is known (most are, where those shapes
-    // are small), before its flux.
-    let dropped = |ray: &Ray| {
-        kind == MapKind::Caustic && !scene.has_media() && starts.is_some_and(|t| !t.may_hit(ray))
-    };
+    // are small), before its flux. (`starts` is given for caustic photons
+    // in scenes without media only.)
+    let dropped = |ray: &Ray| starts.is_some_and(|t| !t.may_hit(ray));
     let (mut ray, flux, le_rgb) = match aimed {
         Some(Some(e)) if dropped(&e.0) => return,
         Some(Some(e)) => e,
@@ -167,11 +166,11 @@ fn trace_one(
             (le.ray, le.flux_weight() / pmf, le.le)
         }
     };
-    let mut connect = connect.map(|make| make());
     let mut power: Rgb = flux / n_emit as f32;
     if !power.is_finite() || power.is_black() {
         return;
     }
+    let mut connect = connect.map(|make| make());
     // Emitted luminance at the origin; infinite for delta lights (the seed's L_e).
     let le_lum = if light.is_delta() {
         f32::INFINITY
