@@ -89,8 +89,20 @@ impl Sampler {
                 let (x, y) = self.sobol.pair(self.index_rev, d, seed);
                 Vec2::new(x.min(ONE_MINUS_EPSILON), y.min(ONE_MINUS_EPSILON))
             }
+            // Past the Sobol points' indices (photon streams beyond the
+            // first 2^16): both numbers from the stream, as two `get_1d`
+            // calls would give them, without their tests.
+            SamplerKind::Sobol if self.index >= (1 << 16) => self.next_pair(),
+            SamplerKind::Independent => self.next_pair(),
             _ => Vec2::new(self.get_1d(), self.get_1d()),
         }
+    }
+
+    #[inline(always)]
+    fn next_pair(&mut self) -> Vec2 {
+        self.dim += 2;
+        let x = self.rng.next_f32();
+        Vec2::new(x, self.rng.next_f32())
     }
 }
 
@@ -109,6 +121,34 @@ mod tests {
             for _ in 0..300 {
                 assert_eq!(a.get_1d(), b.get_1d());
             }
+        }
+    }
+
+    #[test]
+    fn a_pair_is_two_single_numbers() {
+        // Where a pair is not one 2D Sobol point: independent numbers, Sobol
+        // indices past the tables' (2^16) and dimensions across their end
+        // (256), pairs starting at odd dimensions too.
+        let cases = [
+            (SamplerKind::Independent, 0, 0),
+            (SamplerKind::Independent, 3_000_000, 0),
+            (SamplerKind::Sobol, 1 << 16, 0),
+            (SamplerKind::Sobol, 3_000_000, 0),
+            (SamplerKind::Sobol, 7, 254),
+        ];
+        for (kind, index, skip) in cases {
+            let (mut a, mut b) = (Sampler::new(kind, 4), Sampler::new(kind, 4));
+            a.start_stream(0x1234_5678_9abc, index);
+            b.start_stream(0x1234_5678_9abc, index);
+            for _ in 0..skip + 1 {
+                assert_eq!(a.get_1d().to_bits(), b.get_1d().to_bits());
+            }
+            for _ in 0..150 {
+                let p = a.get_2d();
+                let (x, y) = (b.get_1d(), b.get_1d());
+                assert_eq!((p.x.to_bits(), p.y.to_bits()), (x.to_bits(), y.to_bits()));
+            }
+            assert_eq!(a.get_1d().to_bits(), b.get_1d().to_bits());
         }
     }
 
