@@ -28,6 +28,14 @@ pub fn square_to_disk_concentric(u: Vec2) -> Vec2 {
     r * Vec2::new(theta.cos(), theta.sin())
 }
 
+/// The radius of [`square_to_disk_concentric`]'s point (without its angle):
+/// the sine of [`square_to_cosine_hemisphere`]'s polar angle.
+#[inline]
+pub fn disk_concentric_radius(u: Vec2) -> f32 {
+    let o = 2.0 * u - Vec2::ONE;
+    o.x.abs().max(o.y.abs())
+}
+
 /// Cosine-weighted hemisphere around +z; density `cos(theta)/pi`.
 pub fn square_to_cosine_hemisphere(u: Vec2) -> Vec3 {
     let d = square_to_disk_concentric(u);
@@ -132,6 +140,11 @@ mod tests {
         for _ in 0..10_000 {
             let u = Vec2::new(rng.next_f32(), rng.next_f32());
             assert!(square_to_disk_concentric(u).length() <= 1.0 + 1e-6);
+            let r = disk_concentric_radius(u);
+            assert!(
+                (square_to_disk_concentric(u).length() - r).abs() <= 1e-6,
+                "{u:?}"
+            );
             let h = square_to_cosine_hemisphere(u);
             assert!(h.z >= 0.0 && (h.length() - 1.0).abs() < 1e-4);
             assert!((square_to_uniform_sphere(u).length() - 1.0).abs() < 1e-4);

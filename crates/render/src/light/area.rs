@@ -2,12 +2,14 @@
 //! emitting a constant radiance or an image (`area_texture.rs`).
 
 use super::area_texture::TexturedEmission;
-use super::{LeSample, LiSample};
+use super::{EmitCull, KeepAll, LeSample, LiSample};
 use crate::geometry::sample::{pdf_solid_angle, sample_area, sample_solid_angle, FlatTriangle};
 use crate::geometry::square_map::{square_to_surface, surface_to_square};
 use crate::geometry::{offset_ray_origin, Prim, Ray, Shapes};
-use lumis_math::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use lumis_math::{Frame, Rgb, Vec2, Vec3, PI};
+use lumis_math::sampling::{
+    cosine_hemisphere_pdf, disk_concentric_radius, square_to_cosine_hemisphere,
+};
+use lumis_math::{safe_sqrt, Frame, Rgb, Vec2, Vec3, PI};
 
 #[derive(Clone, Debug)]
 pub struct AreaLight {
@@ -140,6 +142,20 @@ impl AreaLight {
     }
 
     pub fn sample_le(&self, shapes: &Shapes, u1: Vec2, u2: Vec2) -> Option<LeSample> {
+        self.sample_le_culled(shapes, u1, u2, None::<&KeepAll>)
+    }
+
+    /// [`AreaLight::sample_le`], or `None` as soon as `cull` says that no
+    /// direction at the sampled polar angle can be kept (before the
+    /// direction's azimuth, frame and radiance are computed): a sample it
+    /// does not refuse is the one `sample_le` gives.
+    pub fn sample_le_culled(
+        &self,
+        shapes: &Shapes,
+        u1: Vec2,
+        u2: Vec2,
+        cull: Option<&impl EmitCull>,
+    ) -> Option<LeSample> {
         let sp = self.sample_point(shapes, u1);
         let mut n = sp.n;
         let mut u = u2;
@@ -154,13 +170,22 @@ impl AreaLight {
             }
             dir_pdf_scale = 0.5;
         }
+        let o = offset_ray_origin(sp.p, n);
+        if let Some(c) = cull {
+            // The cosine-weighted direction's polar angle: its sine is the
+            // concentric disc point's radius.
+            let sin_t = disk_concentric_radius(u);
+            if !c.cone_may_pass(o, n, sin_t, safe_sqrt(1.0 - sin_t * sin_t)) {
+                return None;
+            }
+        }
         let local = square_to_cosine_hemisphere(u);
         let d = Frame::from_normal(n).to_world(local);
         let pdf_dir = cosine_hemisphere_pdf(local.z) * dir_pdf_scale;
         if pdf_dir == 0.0 || sp.pdf == 0.0 {
             return None;
         }
-        let ray = Ray::new(offset_ray_origin(sp.p, n), d);
+        let ray = Ray::new(o, d);
         Some(LeSample {
             ray,
             le: self.l(sp.n, sp.uv, d),

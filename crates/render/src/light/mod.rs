@@ -28,6 +28,25 @@ use crate::geometry::Shapes;
 use crate::geometry::{Aabb, Ray};
 use lumis_math::{Rgb, Vec2, Vec3};
 
+/// A caller's test of the rays it drops as soon as they are emitted
+/// (photon emission skips caustic photons that cannot reach a specular
+/// shape), which a light may apply before finishing its sample.
+pub trait EmitCull {
+    /// False only when no ray from `o` whose direction makes the angle with
+    /// sine `sin_t` and cosine `cos_t` with the unit vector `n` would be
+    /// kept; allowed to err towards true, never towards false.
+    fn cone_may_pass(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool;
+}
+
+/// The [`EmitCull`] that keeps every ray.
+pub struct KeepAll;
+
+impl EmitCull for KeepAll {
+    fn cone_may_pass(&self, _: Vec3, _: Vec3, _: f32, _: f32) -> bool {
+        true
+    }
+}
+
 /// A sample of incident light at a reference point.
 #[derive(Clone, Copy, Debug)]
 pub struct LiSample {
@@ -223,8 +242,22 @@ impl Light {
     }
 
     pub fn sample_le(&self, shapes: &Shapes, u1: Vec2, u2: Vec2) -> Option<LeSample> {
+        self.sample_le_culled(shapes, u1, u2, None::<&KeepAll>)
+    }
+
+    /// [`Light::sample_le`], except that a light that can tell early that
+    /// `cull` refuses every direction its sample may take returns `None`
+    /// before finishing it (area lights; the others ignore `cull`). A
+    /// sample it returns is `sample_le`'s.
+    pub fn sample_le_culled(
+        &self,
+        shapes: &Shapes,
+        u1: Vec2,
+        u2: Vec2,
+        cull: Option<&impl EmitCull>,
+    ) -> Option<LeSample> {
         match self {
-            Light::Area(l) => l.sample_le(shapes, u1, u2),
+            Light::Area(l) => l.sample_le_culled(shapes, u1, u2, cull),
             Light::Point(l) => l.sample_le(u1),
             Light::Goniometric(l) => l.sample_le(u1),
             Light::Spot(l) => l.sample_le(u1),

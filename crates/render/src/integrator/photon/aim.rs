@@ -9,7 +9,7 @@
 
 use crate::geometry::Prim;
 use crate::geometry::{offset_ray_origin, transform_box, Aabb, Ray};
-use crate::light::Light;
+use crate::light::{EmitCull, Light};
 use crate::material::Material;
 use crate::scene::{PrimInfo, Scene};
 use lumis_math::sampling::{
@@ -74,6 +74,30 @@ impl Targets {
         // Empty shapes (a point's box) cannot be hit.
         t.spheres.retain(|s| s.1 > 0.0);
         (finite && t.spheres.len() <= MAX_STARTS).then_some(t)
+    }
+
+    /// Whether some ray from `o` at the polar angle (`sin_t`, `cos_t`)
+    /// about the unit `n` may meet one of the spheres as
+    /// [`Targets::may_hit`] tests them: false only when none can, by a
+    /// margin of a few thousandths of a radian and of the squared distance,
+    /// well above the rounding of a sampled direction (up to about 6e-4
+    /// radians near the horizon) and of `may_hit`'s own test.
+    pub fn cone_may_hit(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool {
+        self.spheres.iter().any(|&(c, r)| {
+            let oc = c - o;
+            let d2 = oc.length_squared();
+            let r2 = (r * 1.001) * (r * 1.001) + 1e-6 * d2;
+            if d2 <= r2 * 1.01 {
+                return true;
+            }
+            // The largest `oc . w` over the unit directions `w` of the cone,
+            // plus the margin; `may_hit` needs `(oc . w)^2 >= d2 - r2` with
+            // `oc . w > 0`.
+            let len = d2.sqrt();
+            let a = oc.dot(n);
+            let m = sin_t * (d2 - a * a).max(0.0).sqrt() + cos_t * a + 4e-3 * len;
+            m > 0.0 && m * m >= d2 - r2 - 1e-3 * d2
+        })
     }
 
     /// Whether `ray` (of any `tmax`) may meet one of the spheres: false only
@@ -191,6 +215,12 @@ impl Targets {
             };
         }
         p / n
+    }
+}
+
+impl EmitCull for Targets {
+    fn cone_may_pass(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool {
+        self.cone_may_hit(o, n, sin_t, cos_t)
     }
 }
 

@@ -157,7 +157,7 @@ fn trace_one(
         Some(Some(e)) => e,
         Some(None) => return,
         None => {
-            let Some(le) = light.sample_le(&scene.shapes, u1, u2) else {
+            let Some(le) = light.sample_le_culled(&scene.shapes, u1, u2, starts) else {
                 return;
             };
             if dropped(&le.ray) {
