@@ -2,7 +2,7 @@
 //! emitting a constant radiance or an image (`area_texture.rs`).
 
 use super::area_texture::TexturedEmission;
-use super::{EmitCull, KeepAll, LeSample, LiSample};
+use super::{EmitCull, LeSample, LiSample};
 use crate::geometry::sample::{pdf_solid_angle, sample_area, sample_solid_angle, FlatTriangle};
 use crate::geometry::square_map::{square_to_surface, surface_to_square};
 use crate::geometry::{offset_ray_origin, Prim, Ray, Shapes};
@@ -130,7 +130,7 @@ impl AreaLight {
         }
     }
 
-    /// Solid-angle density of [`AreaLight::sample_le`]'s direction `w`
+    /// Solid-angle density of [`AreaLight::sample_le_culled`]'s direction `w`
     /// from a point with normal `n` (cosine-weighted, each side half of it
     /// when two-sided; 0 behind a one-sided light).
     pub fn pdf_dir(&self, n: Vec3, w: Vec3) -> f32 {
@@ -141,14 +141,11 @@ impl AreaLight {
         cos.abs() / PI * if self.two_sided { 0.5 } else { 1.0 }
     }
 
-    pub fn sample_le(&self, shapes: &Shapes, u1: Vec2, u2: Vec2) -> Option<LeSample> {
-        self.sample_le_culled(shapes, u1, u2, None::<&KeepAll>)
-    }
-
-    /// [`AreaLight::sample_le`], or `None` as soon as `cull` says that no
-    /// direction at the sampled polar angle can be kept (before the
-    /// direction's azimuth, frame and radiance are computed): a sample it
-    /// does not refuse is the one `sample_le` gives.
+    /// An emitted ray: a point by area, a cosine-weighted direction; or
+    /// `None` as soon as `cull` says that no direction at the sampled polar
+    /// angle can be kept (before the direction's azimuth, frame and
+    /// radiance are computed). A sample `cull` does not refuse is the one
+    /// it gives without `cull`.
     pub fn sample_le_culled(
         &self,
         shapes: &Shapes,
