@@ -86,7 +86,7 @@ impl Targets {
         self.spheres.iter().any(|&(c, r)| {
             let oc = c - o;
             let d2 = oc.length_squared();
-            let r2 = (r * 1.001) * (r * 1.001) + 1e-6 * d2;
+            let r2 = padded_r2(r, d2);
             if d2 <= r2 * 1.01 {
                 return true;
             }
@@ -109,7 +109,7 @@ impl Targets {
         self.spheres.iter().any(|&(c, r)| {
             let oc = c - ray.o;
             let d2 = oc.length_squared();
-            let r2 = (r * 1.001) * (r * 1.001) + 1e-6 * d2;
+            let r2 = padded_r2(r, d2);
             if d2 <= r2 {
                 return true;
             }
@@ -216,6 +216,14 @@ impl Targets {
         }
         p / n
     }
+}
+
+/// A start sphere's squared radius `r` as [`Targets::may_hit`] and
+/// [`Targets::cone_may_hit`] both pad it against rounding: by a thousandth
+/// of the radius and a millionth of the squared distance `d2` to it.
+#[inline(always)]
+fn padded_r2(r: f32, d2: f32) -> f32 {
+    (r * 1.001) * (r * 1.001) + 1e-6 * d2
 }
 
 impl EmitCull for Targets {
