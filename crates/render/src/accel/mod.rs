@@ -6,6 +6,7 @@
 //! never from a scene: it depends on `geometry` only, and `scene` owns it.
 
 pub mod bench;
+mod build;
 pub mod bvh;
 #[cfg(feature = "embree")]
 pub mod embree;
