@@ -5,7 +5,7 @@
 use super::bvh::{Node, EMPTY_NODE, WIDTH};
 use super::mem::huge_vec;
 use crate::geometry::Aabb;
-use lumis_math::Vec3;
+use lumis_math::Vec3A;
 
 const BINS: usize = 16;
 const MAX_LEAF: usize = 8;
@@ -15,15 +15,117 @@ const PARALLEL_THRESHOLD: usize = 16 * 1024;
 /// below `MEDIAN_DEPTH + 32`, which sizes the traversal stacks.
 pub(super) const MEDIAN_DEPTH: u32 = 31;
 
+/// A box in SIMD lanes: unions are one `min` and one `max` (the build's
+/// boxes hold no NaN, where the lanes' and `f32::min`'s rules differ, so
+/// every box equals the scalar [`Aabb`]'s).
+#[derive(Clone, Copy)]
+struct Box3 {
+    lo: Vec3A,
+    hi: Vec3A,
+}
+
+impl Box3 {
+    const EMPTY: Box3 = Box3 {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+    };
+
+    #[inline(always)]
+    fn union(self, o: Box3) -> Box3 {
+        Box3 {
+            lo: self.lo.min(o.lo),
+            hi: self.hi.max(o.hi),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> Box3 {
+        Box3 {
+            lo: self.lo.min(p),
+            hi: self.hi.max(p),
+        }
+    }
+
+    /// [`Aabb::surface_area`] of a box known not to be empty (the same
+    /// arithmetic, without the test).
+    #[inline(always)]
+    fn area(self) -> f32 {
+        let e = self.hi - self.lo;
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
+    fn aabb(self) -> Aabb {
+        Aabb {
+            min: self.lo.into(),
+            max: self.hi.into(),
+        }
+    }
+}
+
 #[derive(Clone, Copy)]
 struct PrimRef {
-    bounds: Aabb,
-    centroid: Vec3,
+    bounds: Box3,
     index: u32,
     /// A primitive that gets a leaf of its own (an analytic shape: its test
     /// costs as much as a packet of four triangles, and its box is the only
     /// cheap way to skip it).
     alone: bool,
+}
+
+impl PrimRef {
+    /// The box's centre, as [`Aabb::center`] computes it.
+    #[inline(always)]
+    fn centroid(&self) -> Vec3A {
+        0.5 * (self.bounds.lo + self.bounds.hi)
+    }
+}
+
+/// One bin of the SAH: its primitives' box, how many, and how many of them
+/// must be alone.
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Box3,
+    count: u32,
+    alone: u32,
+}
+
+const EMPTY_BIN: Bin = Bin {
+    bounds: Box3::EMPTY,
+    count: 0,
+    alone: 0,
+};
+
+/// The bin of centroid coordinate `c` on an axis whose centroids start at
+/// `min` and span `BINS / scale`.
+#[inline(always)]
+fn bin_of(c: f32, min: f32, scale: f32) -> usize {
+    (((c - min) * scale) as usize).min(BINS - 1)
+}
+
+/// [`bin_of`] on the three axes at once.
+#[inline(always)]
+fn bins_of(c: Vec3A, min: Vec3A, scale: Vec3A) -> [usize; 3] {
+    // Clamped to [0, BINS - 1] first (a NaN lane to 0, by `max`'s rule),
+    // where truncation is what the saturating `as usize` gives.
+    let f = ((c - min) * scale)
+        .max(Vec3A::ZERO)
+        .min(Vec3A::splat((BINS - 1) as f32));
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_cvtsi128_si32, _mm_cvttps_epi32, _mm_shuffle_epi32};
+        // SAFETY: these intrinsics need SSE2 only, part of the x86_64
+        // baseline every build targets; they read and write registers only.
+        unsafe {
+            let i = _mm_cvttps_epi32(f.into());
+            [
+                _mm_cvtsi128_si32(i) as usize,
+                _mm_cvtsi128_si32(_mm_shuffle_epi32::<1>(i)) as usize,
+                _mm_cvtsi128_si32(_mm_shuffle_epi32::<2>(i)) as usize,
+            ]
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    [f.x as usize, f.y as usize, f.z as usize]
 }
 
 enum BuildNode {
@@ -61,8 +163,10 @@ pub(super) fn build(
         .enumerate()
         .filter(|(_, b)| !b.is_empty())
         .map(|(i, b)| PrimRef {
-            bounds: *b,
-            centroid: b.center(),
+            bounds: Box3 {
+                lo: b.min.into(),
+                hi: b.max.into(),
+            },
             index: i as u32,
             alone: alone(i),
         })
@@ -70,6 +174,7 @@ pub(super) fn build(
     if refs.is_empty() {
         return None;
     }
+    assert!(block.is_power_of_two(), "blocks of {block} primitives");
     let root = build_rec(&mut refs, 0, Level { depth: 0, block });
     let mut nodes = Vec::with_capacity(refs.len() / 4 + 1);
     flatten(&[&root], &mut nodes);
@@ -130,15 +235,15 @@ fn flatten(kids: &[&BuildNode], out: &mut Vec<Node>) -> u32 {
 
 /// The primitives' bounds, their centroids' bounds, and how many must be alone.
 fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb, usize) {
-    let mut b = Aabb::EMPTY;
-    let mut c = Aabb::EMPTY;
+    let mut b = Box3::EMPTY;
+    let mut c = Box3::EMPTY;
     let mut alone = 0;
     for r in refs {
-        b = b.union(&r.bounds);
-        c.grow(r.centroid);
+        b = b.union(r.bounds);
+        c = c.grow(r.centroid());
         alone += r.alone as usize;
     }
-    (b, c, alone)
+    (b.aabb(), c.aabb(), alone)
 }
 
 /// Where a build step is: its depth, and the SAH's block size.
@@ -150,8 +255,11 @@ struct Level {
 
 fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
     let Level { depth, block } = at;
-    // A leaf's cost: its blocks of primitives, each lone primitive one more.
-    let blocks = |n: u32, alone: u32| (n - alone).div_ceil(block as u32) as f32 + alone as f32;
+    // A leaf's cost: its blocks of primitives, each lone primitive one more
+    // (`block` is a power of two: a shift, not a division).
+    let shift = block.trailing_zeros();
+    let blocks =
+        |n: u32, alone: u32| ((n - alone + (block as u32 - 1)) >> shift) as f32 + alone as f32;
     let (bounds, cb, alone) = bounds_of(refs);
     let n = refs.len();
     let leaf = BuildNode::Leaf {
@@ -187,41 +295,45 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
         }
         return split_at(refs, start, n / 2, bounds, at);
     }
-    // Binned SAH over all three axes.
+    // Binned SAH over all three axes, binned in one pass.
+    let scale = |ax: usize| BINS as f32 / ext[ax];
+    let scales: [f32; 3] = std::array::from_fn(|ax| if ext[ax] > 0.0 { scale(ax) } else { 0.0 });
+    let (cmin, scale3) = (Vec3A::from(cb.min), Vec3A::from(scales));
+    let mut bins = [[EMPTY_BIN; BINS]; 3];
+    for r in refs.iter() {
+        let b = bins_of(r.centroid(), cmin, scale3);
+        for (ax, bins) in bins.iter_mut().enumerate() {
+            let bin = &mut bins[b[ax] & (BINS - 1)];
+            bin.count += 1;
+            bin.alone += r.alone as u32;
+            bin.bounds = bin.bounds.union(r.bounds);
+        }
+    }
     let mut best = (f32::INFINITY, 0usize, 0usize); // cost, axis, split bin
-    for ax in 0..3 {
+    for (ax, bins) in bins.iter().enumerate() {
         if ext[ax] <= 0.0 {
             continue;
         }
-        let scale = BINS as f32 / ext[ax];
-        // Per bin: primitives, and how many of them must be alone.
-        let mut counts = [(0u32, 0u32); BINS];
-        let mut boxes = [Aabb::EMPTY; BINS];
-        for r in refs.iter() {
-            let b = (((r.centroid[ax] - cb.min[ax]) * scale) as usize).min(BINS - 1);
-            counts[b].0 += 1;
-            counts[b].1 += r.alone as u32;
-            boxes[b] = boxes[b].union(&r.bounds);
-        }
         let mut right_area = [0f32; BINS];
         let mut right_count = [(0u32, 0u32); BINS];
-        let (mut acc, mut cnt) = (Aabb::EMPTY, (0u32, 0u32));
+        let (mut acc, mut cnt) = (Box3::EMPTY, (0u32, 0u32));
         for i in (1..BINS).rev() {
-            acc = acc.union(&boxes[i]);
-            cnt = (cnt.0 + counts[i].0, cnt.1 + counts[i].1);
-            right_area[i] = acc.surface_area();
+            acc = acc.union(bins[i].bounds);
+            cnt = (cnt.0 + bins[i].count, cnt.1 + bins[i].alone);
+            // Read below only where the box holds primitives.
+            right_area[i] = acc.area();
             right_count[i] = cnt;
         }
-        let (mut acc, mut cnt) = (Aabb::EMPTY, (0u32, 0u32));
+        let (mut acc, mut cnt) = (Box3::EMPTY, (0u32, 0u32));
         for i in 0..BINS - 1 {
-            acc = acc.union(&boxes[i]);
-            cnt = (cnt.0 + counts[i].0, cnt.1 + counts[i].1);
+            acc = acc.union(bins[i].bounds);
+            cnt = (cnt.0 + bins[i].count, cnt.1 + bins[i].alone);
             let right = right_count[i + 1];
             if cnt.0 == 0 || right.0 == 0 {
                 continue;
             }
-            let cost = blocks(cnt.0, cnt.1) * acc.surface_area()
-                + blocks(right.0, right.1) * right_area[i + 1];
+            let cost =
+                blocks(cnt.0, cnt.1) * acc.area() + blocks(right.0, right.1) * right_area[i + 1];
             if cost < best.0 {
                 best = (cost, ax, i);
             }
@@ -236,9 +348,8 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
         return split_at(refs, start, n / 2, bounds, at);
     }
     let (ax, bin) = (best.1, best.2);
-    let scale = BINS as f32 / ext[ax];
     let mid = partition(refs, |r| {
-        (((r.centroid[ax] - cb.min[ax]) * scale) as usize).min(BINS - 1) <= bin
+        bin_of(r.centroid()[ax], cb.min[ax], scales[ax]) <= bin
     });
     if mid == 0 || mid == n {
         return split_at(refs, start, n / 2, bounds, at);
@@ -255,7 +366,9 @@ fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Le
     } else {
         2
     };
-    refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+    refs.select_nth_unstable_by(mid, |a, b| {
+        a.centroid()[axis].total_cmp(&b.centroid()[axis])
+    });
     children(refs, start, mid, bounds, at)
 }
 
@@ -289,4 +402,78 @@ fn partition(refs: &mut [PrimRef], pred: impl Fn(&PrimRef) -> bool) -> usize {
         }
     }
     i
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lumis_math::{Pcg32, Vec3};
+
+    /// The three-axis SIMD binning gives every axis the scalar rule's bin,
+    /// at the ends of the range and off it: centroids on the first and the
+    /// last plane, just past the last, below the first, NaN, infinite, and
+    /// an axis of zero extent (scale 0).
+    #[test]
+    fn three_axis_bins_are_the_scalar_bins() {
+        let mut rng = Pcg32::new(3, 9);
+        let odd = [
+            0.0,
+            -0.0,
+            1.0,
+            1.0 + f32::EPSILON,
+            -1e-7,
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            1e30,
+        ];
+        for round in 0..20_000 {
+            let min = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 4.0 - 2.0;
+            let ext = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 3.0;
+            let mut scale = ext.map(|e| BINS as f32 / e);
+            if round % 7 == 0 {
+                scale.y = 0.0;
+            }
+            let c = Vec3::from_array(std::array::from_fn(|ax| {
+                let u = rng.next_f32();
+                if round % 3 == 0 {
+                    // On a plane, past the ends, or not a number at all.
+                    let k = (u * odd.len() as f32) as usize % odd.len();
+                    min[ax] + odd[k] * ext[ax]
+                } else {
+                    min[ax] + u * ext[ax]
+                }
+            }));
+            let got = bins_of(c.into(), min.into(), scale.into());
+            for ax in 0..3 {
+                assert_eq!(
+                    got[ax] & (BINS - 1),
+                    bin_of(c[ax], min[ax], scale[ax]),
+                    "round {round}, axis {ax}: c {c}, min {min}, scale {scale}"
+                );
+            }
+        }
+    }
+
+    /// The SIMD box's area is `Aabb::surface_area` bit for bit, so the
+    /// SAH picks the splits it picked with scalar boxes.
+    #[test]
+    fn simd_box_area_is_the_aabb_area() {
+        let mut rng = Pcg32::new(4, 2);
+        for _ in 0..20_000 {
+            let a = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0 - 5.0;
+            let mut e = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+            if rng.next_f32() < 0.2 {
+                e.x = 0.0; // flat
+            }
+            let b = Aabb { min: a, max: a + e };
+            let simd = Box3 {
+                lo: b.min.into(),
+                hi: b.max.into(),
+            };
+            assert_eq!(simd.area().to_bits(), b.surface_area().to_bits(), "{b:?}");
+            let u = simd.union(Box3::EMPTY).union(simd);
+            assert_eq!(u.aabb(), b.union(&Aabb::EMPTY));
+        }
+    }
 }
