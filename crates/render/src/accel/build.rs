@@ -175,7 +175,8 @@ pub(super) fn build(
         return None;
     }
     assert!(block.is_power_of_two(), "blocks of {block} primitives");
-    let root = build_rec(&mut refs, 0, Level { depth: 0, block });
+    let span = span_of(&refs);
+    let root = build_rec(&mut refs, 0, Level { depth: 0, block }, span);
     let mut nodes = Vec::with_capacity(refs.len() / 4 + 1);
     flatten(&[&root], &mut nodes);
     // Copy into a huge-page backed array of the exact size.
@@ -233,17 +234,30 @@ fn flatten(kids: &[&BuildNode], out: &mut Vec<Node>) -> u32 {
     idx as u32
 }
 
-/// The primitives' bounds, their centroids' bounds, and how many must be alone.
-fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb, usize) {
-    let mut b = Box3::EMPTY;
-    let mut c = Box3::EMPTY;
-    let mut alone = 0;
+/// What a build step knows of its primitives before it reads them: their
+/// bounds, their centroids' bounds, and how many must be alone (a split
+/// hands them to its two sides, so each level reads the primitives twice,
+/// to bin and to partition, not three times).
+#[derive(Clone, Copy)]
+struct Span {
+    bounds: Box3,
+    centroids: Box3,
+    alone: u32,
+}
+
+/// The [`Span`] of `refs`, read from them.
+fn span_of(refs: &[PrimRef]) -> Span {
+    let mut s = Span {
+        bounds: Box3::EMPTY,
+        centroids: Box3::EMPTY,
+        alone: 0,
+    };
     for r in refs {
-        b = b.union(r.bounds);
-        c = c.grow(r.centroid());
-        alone += r.alone as usize;
+        s.bounds = s.bounds.union(r.bounds);
+        s.centroids = s.centroids.grow(r.centroid());
+        s.alone += r.alone as u32;
     }
-    (b.aabb(), c.aabb(), alone)
+    s
 }
 
 /// Where a build step is: its depth, and the SAH's block size.
@@ -253,14 +267,18 @@ struct Level {
     block: usize,
 }
 
-fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
+fn build_rec(refs: &mut [PrimRef], start: usize, at: Level, span: Span) -> BuildNode {
     let Level { depth, block } = at;
     // A leaf's cost: its blocks of primitives, each lone primitive one more
     // (`block` is a power of two: a shift, not a division).
     let shift = block.trailing_zeros();
     let blocks =
         |n: u32, alone: u32| ((n - alone + (block as u32 - 1)) >> shift) as f32 + alone as f32;
-    let (bounds, cb, alone) = bounds_of(refs);
+    let (bounds, cb, alone) = (
+        span.bounds.aabb(),
+        span.centroids.aabb(),
+        span.alone as usize,
+    );
     let n = refs.len();
     let leaf = BuildNode::Leaf {
         bounds,
@@ -348,13 +366,26 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level) -> BuildNode {
         return split_at(refs, start, n / 2, bounds, at);
     }
     let (ax, bin) = (best.1, best.2);
-    let mid = partition(refs, |r| {
-        bin_of(r.centroid()[ax], cb.min[ax], scales[ax]) <= bin
-    });
+    let (mid, centroids) = partition(refs, |c| bin_of(c[ax], cb.min[ax], scales[ax]) <= bin);
     if mid == 0 || mid == n {
         return split_at(refs, start, n / 2, bounds, at);
     }
-    children(refs, start, mid, bounds, at)
+    // Each side's box and lone primitives are those of its bins.
+    let side = |bins: &[Bin], centroids: Box3| {
+        let mut s = Span {
+            bounds: Box3::EMPTY,
+            centroids,
+            alone: 0,
+        };
+        for b in bins {
+            s.bounds = s.bounds.union(b.bounds);
+            s.alone += b.alone;
+        }
+        s
+    };
+    let (l, r) = bins[ax].split_at(bin + 1);
+    let spans = [side(l, centroids[0]), side(r, centroids[1])];
+    children(refs, start, mid, bounds, at, spans)
 }
 
 fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Level) -> BuildNode {
@@ -369,10 +400,18 @@ fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Le
     refs.select_nth_unstable_by(mid, |a, b| {
         a.centroid()[axis].total_cmp(&b.centroid()[axis])
     });
-    children(refs, start, mid, bounds, at)
+    let spans = [span_of(&refs[..mid]), span_of(&refs[mid..])];
+    children(refs, start, mid, bounds, at, spans)
 }
 
-fn children(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Level) -> BuildNode {
+fn children(
+    refs: &mut [PrimRef],
+    start: usize,
+    mid: usize,
+    bounds: Aabb,
+    at: Level,
+    [sl, sr]: [Span; 2],
+) -> BuildNode {
     let next = Level {
         depth: at.depth + 1,
         ..at
@@ -381,11 +420,14 @@ fn children(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Le
     let (l, r) = refs.split_at_mut(mid);
     let (a, b) = if big {
         rayon::join(
-            || build_rec(l, start, next),
-            || build_rec(r, start + mid, next),
+            || build_rec(l, start, next, sl),
+            || build_rec(r, start + mid, next, sr),
         )
     } else {
-        (build_rec(l, start, next), build_rec(r, start + mid, next))
+        (
+            build_rec(l, start, next, sl),
+            build_rec(r, start + mid, next, sr),
+        )
     };
     BuildNode::Interior {
         bounds,
@@ -393,15 +435,22 @@ fn children(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Le
     }
 }
 
-fn partition(refs: &mut [PrimRef], pred: impl Fn(&PrimRef) -> bool) -> usize {
+/// Moves the primitives whose centroid passes `left` to the front; returns
+/// how many there are and the bounds of the two sides' centroids.
+fn partition(refs: &mut [PrimRef], left: impl Fn(Vec3A) -> bool) -> (usize, [Box3; 2]) {
     let mut i = 0;
+    let mut centroids = [Box3::EMPTY; 2];
     for j in 0..refs.len() {
-        if pred(&refs[j]) {
+        let c = refs[j].centroid();
+        if left(c) {
+            centroids[0] = centroids[0].grow(c);
             refs.swap(i, j);
             i += 1;
+        } else {
+            centroids[1] = centroids[1].grow(c);
         }
     }
-    i
+    (i, centroids)
 }
 
 #[cfg(test)]
