@@ -149,7 +149,9 @@ impl BuildNode {
 }
 
 /// The nodes, the leaf slots' primitives and the bounds of a BVH over
-/// `bounds` (empty boxes skipped; `None` if all are): the SAH counts
+/// `bounds` (empty boxes skipped, and boxes with a NaN: such a primitive
+/// cannot be hit, and in the SIMD unions a NaN would replace, not join,
+/// its neighbours' extent; `None` if all are skipped): the SAH counts
 /// primitives in blocks of `block` (a leaf of up to `block` primitives
 /// costs one test), and each primitive `i` for which `alone(i)` holds gets
 /// a leaf by itself.
@@ -161,7 +163,7 @@ pub(super) fn build(
     let mut refs: Vec<PrimRef> = bounds
         .iter()
         .enumerate()
-        .filter(|(_, b)| !b.is_empty())
+        .filter(|(_, b)| !b.is_empty() && !b.min.is_nan() && !b.max.is_nan())
         .map(|(i, b)| PrimRef {
             bounds: Box3 {
                 lo: b.min.into(),
@@ -500,6 +502,51 @@ mod tests {
                     bin_of(c[ax], min[ax], scale[ax]),
                     "round {round}, axis {ax}: c {c}, min {min}, scale {scale}"
                 );
+            }
+        }
+    }
+
+    /// Boxes with a NaN (a mesh vertex that is not a number) are left out,
+    /// and every other box stays inside its node's: a ray through the
+    /// middle of each finds it.
+    #[test]
+    fn boxes_with_a_nan_leave_the_others_whole() {
+        let mut rng = Pcg32::new(8, 5);
+        let boxes: Vec<Aabb> = (0..3000)
+            .map(|i| {
+                let c = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0;
+                let mut b = Aabb {
+                    min: c,
+                    max: c + Vec3::splat(0.05 + 0.1 * rng.next_f32()),
+                };
+                if i % 7 == 3 {
+                    b.min[i % 3] = f32::NAN;
+                }
+                if i % 11 == 5 {
+                    b.max[(i + 1) % 3] = f32::NAN;
+                }
+                b
+            })
+            .collect();
+        let nan = |b: &Aabb| b.min.is_nan() || b.max.is_nan();
+        for block in [1, 4] {
+            let bvh = match block {
+                1 => super::super::Bvh::build(&boxes),
+                _ => super::super::Bvh::build_aligned(&boxes, block, |_| false),
+            };
+            let kept: Vec<u32> = bvh
+                .order
+                .iter()
+                .copied()
+                .filter(|&i| i != u32::MAX)
+                .collect();
+            assert_eq!(kept.len(), boxes.iter().filter(|b| !nan(b)).count());
+            assert!(kept.iter().all(|&i| !nan(&boxes[i as usize])));
+            for (i, b) in boxes.iter().enumerate().filter(|(_, b)| !nan(b)) {
+                let c = b.center();
+                let ray = crate::geometry::Ray::new(c - Vec3::X * 20.0, Vec3::X);
+                let found = bvh.any(&ray, |slot, _, _| bvh.order[slot as usize] == i as u32);
+                assert!(found, "box {i} lost (blocks of {block})");
             }
         }
     }

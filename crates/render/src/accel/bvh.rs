@@ -144,7 +144,8 @@ struct Entry {
 }
 
 impl Bvh {
-    /// Builds over primitives given by their bounds. Empty boxes are skipped.
+    /// Builds over primitives given by their bounds. Empty boxes, and boxes
+    /// with a NaN, are skipped.
     pub fn build(bounds: &[Aabb]) -> Bvh {
         Bvh::build_blocks(bounds, 1, |_| false)
     }
