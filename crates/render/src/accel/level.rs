@@ -2,6 +2,7 @@
 //! primitives (and the triangles' vertices) stored in leaf order. The world's
 //! own primitives form one level; each instanced object forms another.
 
+use super::mem::prefetch_lines;
 use super::tri4::{PacketRay, TriPackets, PADDING};
 use super::{Bvh, PrimInfo};
 use crate::geometry::{Aabb, Prim, Ray, Shapes, SurfaceGeom};
@@ -86,6 +87,9 @@ impl PrimBvh {
                         .closest((start, count), r, &pr, tmax, |id, r, tmax| {
                             self.analytic(shapes, id, r, tmax)
                         })?;
+                // The hit's record is read next (material, light, geometry):
+                // start loading it while the traversal finishes.
+                prefetch_lines::<1>(self.prims.as_ptr().wrapping_add(id as usize) as *const u8);
                 uv = b;
                 Some((t, id))
             },
