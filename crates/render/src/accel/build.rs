@@ -5,7 +5,7 @@
 use super::bvh::{Node, EMPTY_NODE, WIDTH};
 use super::mem::huge_vec;
 use crate::geometry::Aabb;
-use lumis_math::Vec3A;
+use lumis_math::{Vec3, Vec3A};
 
 const BINS: usize = 16;
 const MAX_LEAF: usize = 8;
@@ -294,13 +294,7 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level, span: Span) -> Build
         return leaf;
     }
     let ext = cb.extent();
-    let axis = if ext.x > ext.y && ext.x > ext.z {
-        0
-    } else if ext.y > ext.z {
-        1
-    } else {
-        2
-    };
+    let axis = longest_axis(ext);
     if depth >= MEDIAN_DEPTH {
         // Deep trees: balanced splits bound the depth (and the traversal stack) by 2 * MEDIAN_DEPTH.
         if may_leaf {
@@ -316,9 +310,14 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level, span: Span) -> Build
         return split_at(refs, start, n / 2, bounds, at);
     }
     // Binned SAH over all three axes, binned in one pass.
-    let scale = |ax: usize| BINS as f32 / ext[ax];
-    let scales: [f32; 3] = std::array::from_fn(|ax| if ext[ax] > 0.0 { scale(ax) } else { 0.0 });
-    let (cmin, scale3) = (Vec3A::from(cb.min), Vec3A::from(scales));
+    let scales: [f32; 3] = std::array::from_fn(|ax| {
+        if ext[ax] > 0.0 {
+            BINS as f32 / ext[ax]
+        } else {
+            0.0
+        }
+    });
+    let (cmin, scale3) = (span.centroids.lo, Vec3A::from(scales));
     let mut bins = [[EMPTY_BIN; BINS]; 3];
     for r in refs.iter() {
         let b = bins_of(r.centroid(), cmin, scale3);
@@ -390,15 +389,19 @@ fn build_rec(refs: &mut [PrimRef], start: usize, at: Level, span: Span) -> Build
     children(refs, start, mid, bounds, at, spans)
 }
 
-fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Level) -> BuildNode {
-    let ext = bounds.extent();
-    let axis = if ext.x > ext.y && ext.x > ext.z {
+/// The axis along which `ext` is longest (the last of equals).
+fn longest_axis(ext: Vec3) -> usize {
+    if ext.x > ext.y && ext.x > ext.z {
         0
     } else if ext.y > ext.z {
         1
     } else {
         2
-    };
+    }
+}
+
+fn split_at(refs: &mut [PrimRef], start: usize, mid: usize, bounds: Aabb, at: Level) -> BuildNode {
+    let axis = longest_axis(bounds.extent());
     refs.select_nth_unstable_by(mid, |a, b| {
         a.centroid()[axis].total_cmp(&b.centroid()[axis])
     });

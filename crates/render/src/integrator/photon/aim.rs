@@ -76,30 +76,6 @@ impl Targets {
         (finite && t.spheres.len() <= MAX_STARTS).then_some(t)
     }
 
-    /// Whether some ray from `o` at the polar angle (`sin_t`, `cos_t`)
-    /// about the unit `n` may meet one of the spheres as
-    /// [`Targets::may_hit`] tests them: false only when none can, by a
-    /// margin of a few thousandths of a radian and of the squared distance,
-    /// well above the rounding of a sampled direction (up to about 6e-4
-    /// radians near the horizon) and of `may_hit`'s own test.
-    pub fn cone_may_hit(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool {
-        self.spheres.iter().any(|&(c, r)| {
-            let oc = c - o;
-            let d2 = oc.length_squared();
-            let r2 = padded_r2(r, d2);
-            if d2 <= r2 * 1.01 {
-                return true;
-            }
-            // The largest `oc . w` over the unit directions `w` of the cone,
-            // plus the margin; `may_hit` needs `(oc . w)^2 >= d2 - r2` with
-            // `oc . w > 0`.
-            let len = d2.sqrt();
-            let a = oc.dot(n);
-            let m = sin_t * (d2 - a * a).max(0.0).sqrt() + cos_t * a + 4e-3 * len;
-            m > 0.0 && m * m >= d2 - r2 - 1e-3 * d2
-        })
-    }
-
     /// Whether `ray` (of any `tmax`) may meet one of the spheres: false only
     /// when it misses each by a margin (a thousandth of its radius, and of
     /// the distance, for rounding), so a ray that hits one of the shapes is
@@ -219,7 +195,7 @@ impl Targets {
 }
 
 /// A start sphere's squared radius `r` as [`Targets::may_hit`] and
-/// [`Targets::cone_may_hit`] both pad it against rounding: by a thousandth
+/// `Targets`' [`EmitCull::cone_may_pass`] both pad it against rounding: by a thousandth
 /// of the radius and a millionth of the squared distance `d2` to it.
 #[inline(always)]
 fn padded_r2(r: f32, d2: f32) -> f32 {
@@ -227,8 +203,28 @@ fn padded_r2(r: f32, d2: f32) -> f32 {
 }
 
 impl EmitCull for Targets {
+    /// Whether some ray from `o` at the polar angle (`sin_t`, `cos_t`)
+    /// about the unit `n` may meet one of the spheres as
+    /// [`Targets::may_hit`] tests them: false only when none can, by a
+    /// margin of a few thousandths of a radian and of the squared distance,
+    /// well above the rounding of a sampled direction (up to about 6e-4
+    /// radians near the horizon) and of `may_hit`'s own test.
     fn cone_may_pass(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool {
-        self.cone_may_hit(o, n, sin_t, cos_t)
+        self.spheres.iter().any(|&(c, r)| {
+            let oc = c - o;
+            let d2 = oc.length_squared();
+            let r2 = padded_r2(r, d2);
+            if d2 <= r2 * 1.01 {
+                return true;
+            }
+            // The largest `oc . w` over the unit directions `w` of the cone,
+            // plus the margin; `may_hit` needs `(oc . w)^2 >= d2 - r2` with
+            // `oc . w > 0`.
+            let len = d2.sqrt();
+            let a = oc.dot(n);
+            let m = sin_t * (d2 - a * a).max(0.0).sqrt() + cos_t * a + 4e-3 * len;
+            m > 0.0 && m * m >= d2 - r2 - 1e-3 * d2
+        })
     }
 }
 
