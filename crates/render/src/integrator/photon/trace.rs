@@ -63,6 +63,16 @@ pub fn trace_photons(
         MapKind::Caustic => (aims.aim.as_ref(), aims.starts.as_ref()),
         MapKind::Global => (None, None),
     };
+    let job = Job {
+        scene,
+        n_emit,
+        kind,
+        seed,
+        max_depth,
+        targets,
+        starts,
+        connect,
+    };
     let chunks = n_emit.div_ceil(CHUNK);
     let parts: Vec<Traced> = (0..chunks)
         .into_par_iter()
@@ -71,33 +81,12 @@ pub fn trace_photons(
             if cancel.load(Ordering::Relaxed) {
                 return out;
             }
-            let mut sampler = Sampler::new(SamplerKind::Independent, seed);
+            let mut sampler = job.sampler();
             let mut rays = 0u64;
             for i in c * CHUNK..((c + 1) * CHUNK).min(n_emit) {
-                sampler.start_stream(i, 0);
-                // Its stream is made only for a photon that is traced.
-                let connect = connect.map(|margin| {
-                    move || Connect {
-                        margin,
-                        rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
-                    }
-                });
-                trace_one(
-                    scene,
-                    n_emit,
-                    (kind, max_depth),
-                    (targets, starts),
-                    connect,
-                    &mut sampler,
-                    &mut out,
-                    &mut rays,
-                );
+                job.trace(i, &mut sampler, &mut out, &mut rays);
             }
-            scene.count_rays(rays);
-            scene
-                .counters
-                .photon_rays
-                .fetch_add(rays, Ordering::Relaxed);
+            job.count(rays);
             out
         })
         .collect();
@@ -120,6 +109,57 @@ pub fn trace_photons(
     Some(all)
 }
 
+/// What the photons of one [`trace_photons`] call share. Photon `i`'s
+/// results depend on `i` and these alone, whatever order they are traced in.
+pub(super) struct Job<'a> {
+    pub scene: &'a Scene,
+    pub n_emit: u64,
+    pub kind: MapKind,
+    pub seed: u64,
+    pub max_depth: u32,
+    pub targets: Option<&'a Targets>,
+    pub starts: Option<&'a Targets>,
+    pub connect: Option<Vec2>,
+}
+
+impl Job<'_> {
+    pub fn sampler(&self) -> Sampler {
+        Sampler::new(SamplerKind::Independent, self.seed)
+    }
+
+    /// Traces photon `i`, adding what it stores to `out`.
+    pub fn trace(&self, i: u64, sampler: &mut Sampler, out: &mut Traced, rays: &mut u64) {
+        sampler.start_stream(i, 0);
+        let seed = self.seed;
+        // Its stream is made only for a photon that is traced.
+        let connect = self.connect.map(|margin| {
+            move || Connect {
+                margin,
+                rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
+            }
+        });
+        trace_one(
+            self.scene,
+            self.n_emit,
+            (self.kind, self.max_depth),
+            (self.targets, self.starts),
+            connect,
+            sampler,
+            out,
+            rays,
+        );
+    }
+
+    /// Adds `rays` photon rays to the scene's counters.
+    pub fn count(&self, rays: u64) {
+        self.scene.count_rays(rays);
+        self.scene
+            .counters
+            .photon_rays
+            .fetch_add(rays, Ordering::Relaxed);
+    }
+}
+
 /// A photon's connections to the camera: the film margin, and a stream of
 /// its own, so the photon's path (and the maps) are those without them.
 struct Connect {
@@ -138,9 +178,31 @@ fn trace_one(
     out: &mut Traced,
     rays: &mut u64,
 ) {
-    let Some((li, pmf)) = scene.light_sampler.sample(sampler.get_1d()) else {
+    let Some(e) = emit(scene, n_emit, (targets, starts), sampler) else {
         return;
     };
+    trace_from(scene, e, (kind, max_depth), connect, sampler, out, rays);
+}
+
+/// A photon as it leaves its light: the light, the first ray, the power
+/// and the emitted luminance at the origin (infinite for delta lights).
+struct Emission {
+    li: u32,
+    ray: Ray,
+    power: Rgb,
+    le_lum: f32,
+}
+
+/// The emission of the photon whose stream `sampler` starts, or None for
+/// one that is not traced (no light, zero power, or a caustic photon that
+/// `starts` drops).
+fn emit(
+    scene: &Scene,
+    n_emit: u64,
+    (targets, starts): (Option<&Targets>, Option<&Targets>),
+    sampler: &mut Sampler,
+) -> Option<Emission> {
+    let (li, pmf) = scene.light_sampler.sample(sampler.get_1d())?;
     let light = &scene.lights[li as usize];
     let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
     // Aimed caustic photons (area, point, spot lights), else ordinary emission.
@@ -152,31 +214,53 @@ fn trace_one(
     // are small), before its flux. (`starts` is given for caustic photons
     // in scenes without media only.)
     let dropped = |ray: &Ray| starts.is_some_and(|t| !t.may_hit(ray));
-    let (mut ray, flux, le_rgb) = match aimed {
-        Some(Some(e)) if dropped(&e.0) => return,
+    let (ray, flux, le_rgb) = match aimed {
+        Some(Some(e)) if dropped(&e.0) => return None,
         Some(Some(e)) => e,
-        Some(None) => return,
+        Some(None) => return None,
         None => {
-            let Some(le) = light.sample_le_culled(&scene.shapes, u1, u2, starts) else {
-                return;
-            };
+            let le = light.sample_le_culled(&scene.shapes, u1, u2, starts)?;
             if dropped(&le.ray) {
-                return;
+                return None;
             }
             (le.ray, le.flux_weight() / pmf, le.le)
         }
     };
-    let mut power: Rgb = flux / n_emit as f32;
+    let power: Rgb = flux / n_emit as f32;
     if !power.is_finite() || power.is_black() {
-        return;
+        return None;
     }
-    let mut connect = connect.map(|make| make());
     // Emitted luminance at the origin; infinite for delta lights (the seed's L_e).
     let le_lum = if light.is_delta() {
         f32::INFINITY
     } else {
         le_rgb.luminance()
     };
+    Some(Emission {
+        li,
+        ray,
+        power,
+        le_lum,
+    })
+}
+
+/// Traces an emitted photon on (the rest of its stream in `sampler`).
+fn trace_from(
+    scene: &Scene,
+    e: Emission,
+    (kind, max_depth): (MapKind, u32),
+    connect: Option<impl FnOnce() -> Connect>,
+    sampler: &mut Sampler,
+    out: &mut Traced,
+    rays: &mut u64,
+) {
+    let Emission {
+        li,
+        mut ray,
+        mut power,
+        le_lum,
+    } = e;
+    let mut connect = connect.map(|make| make());
     let mut specular_only = true;
     // Media: the medium the light emits into, and a stream for free flights.
     let mut medium = match scene.light_media.get(li as usize) {
