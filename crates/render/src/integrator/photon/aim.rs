@@ -95,6 +95,41 @@ impl Targets {
         })
     }
 
+    /// A key that orders rays by where they meet the spheres: the first
+    /// sphere along the ray that it may hit (as [`Targets::may_hit`]), and
+    /// in its 30 low bits the Morton code of the ray's point nearest that
+    /// sphere's centre, on a 1024^3 grid over the sphere's box. Rays of
+    /// close keys meet the same part of the same shape first. None if the
+    /// ray may hit none.
+    pub fn order_key(&self, ray: &Ray) -> Option<u32> {
+        let inv_len2 = 1.0 / ray.d.length_squared();
+        let mut best: Option<(f32, usize, Vec3)> = None;
+        for (k, &(c, r)) in self.spheres.iter().enumerate() {
+            let oc = c - ray.o;
+            let d2 = oc.length_squared();
+            let r2 = padded_r2(r, d2);
+            let t = oc.dot(ray.d) * inv_len2;
+            let p = ray.o + ray.d * t.max(0.0);
+            let inside = d2 <= r2;
+            if !(inside || t > 0.0 && (c - p).length_squared() <= r2) {
+                continue;
+            }
+            // Distance along the ray to where it enters the sphere, roughly.
+            let entry = if inside { 0.0 } else { t };
+            if best.is_none_or(|b| entry < b.0) {
+                best = Some((entry, k, p));
+            }
+        }
+        let (_, k, p) = best?;
+        let (c, r) = self.spheres[k];
+        let cell = |x: f32, cx: f32| {
+            let u = (x - (cx - r)) / (2.0 * r);
+            spread3((u.clamp(0.0, 1.0) * 1023.0) as u32)
+        };
+        let code = cell(p.x, c.x) | cell(p.y, c.y) << 1 | cell(p.z, c.z) << 2;
+        Some(((k as u32) << 30) | code)
+    }
+
     /// One sphere per shape (a whole mesh, a sphere, a disk) kept by its
     /// material, in a stable order: its box's bounding sphere, or with
     /// `tight` (world shapes) the sphere about the box's centre that
@@ -315,4 +350,53 @@ pub fn emitted_flux(
         _ => None,
     };
     light.emitted_flux(&scene.shapes, pmf, p, n, w, le_lum, aimed_pdf)
+}
+
+/// The 10 low bits of `x` spread to every third bit (a Morton code's axis).
+fn spread3(x: u32) -> u32 {
+    let mut x = x & 0x3ff;
+    x = (x | x << 16) & 0x0300_00ff;
+    x = (x | x << 8) & 0x0300_f00f;
+    x = (x | x << 4) & 0x030c_30c3;
+    (x | x << 2) & 0x0924_9249
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The key names the first sphere a ray may meet, and rays that pass
+    /// near each other there get keys that share their high bits.
+    #[test]
+    fn order_keys_follow_the_first_sphere_and_the_point() {
+        let t = Targets {
+            spheres: vec![
+                (Vec3::new(0.0, 0.0, 5.0), 1.0),
+                (Vec3::new(0.0, 0.0, 2.0), 0.5),
+            ],
+        };
+        let up = |x: f32, y: f32| Ray::new(Vec3::new(x, y, 0.0), Vec3::new(0.0, 0.0, 1.0));
+        // Through both: the nearer (index 1) first; beside the small one,
+        // the large one (index 0); beside both, none.
+        assert_eq!(t.order_key(&up(0.1, 0.0)).map(|k| k >> 30), Some(1));
+        assert_eq!(t.order_key(&up(0.8, 0.0)).map(|k| k >> 30), Some(0));
+        assert_eq!(t.order_key(&up(1.5, 0.0)), None);
+        // Backwards: the spheres are behind the origin.
+        let back = Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0));
+        assert_eq!(t.order_key(&back), None);
+        // Close points share more leading bits than far ones.
+        let k = |x: f32| t.order_key(&up(x, 0.3)).unwrap();
+        let shared = |a: u32, b: u32| (a ^ b).leading_zeros();
+        assert!(shared(k(0.01), k(0.02)) > shared(k(0.01), k(-0.4)));
+        // From inside a sphere: its own key, at the origin's cell.
+        let inside = Ray::new(Vec3::new(0.0, 0.0, 5.5), Vec3::new(1.0, 0.0, 0.0));
+        assert_eq!(t.order_key(&inside).map(|k| k >> 30), Some(0));
+    }
+
+    #[test]
+    fn spread3_spreads_ten_bits() {
+        assert_eq!(spread3(0b11), 0b1001);
+        assert_eq!(spread3(0x3ff), 0x0924_9249);
+        assert_eq!(spread3(0x400), 0);
+    }
 }

@@ -16,6 +16,7 @@ mod disc_grid;
 pub mod gather;
 mod kdtree;
 pub mod map;
+mod order;
 pub mod pass;
 pub mod photon;
 pub mod progressive;

@@ -45,6 +45,11 @@ const CHUNK: u64 = 4096;
 /// `aims.aim` and skipped by `aims.starts` when those are given.
 /// `connect`: caustic photons are also connected to the camera, whose film
 /// they may reach within that margin (the filter's radius, pixels).
+///
+/// Where `aims.starts` bounds the shapes a caustic path can start at and
+/// the scene's geometry does not fit in a core's cache, the caustic
+/// photons are traced in the order of where they meet those shapes
+/// (`order.rs`), and their results put back in photon order.
 #[allow(clippy::too_many_arguments)]
 pub fn trace_photons(
     scene: &Scene,
@@ -73,6 +78,11 @@ pub fn trace_photons(
         starts,
         connect,
     };
+    if let (MapKind::Caustic, Some(starts)) = (kind, starts) {
+        if scene.geometry_memory_bytes() > super::order::SORT_ABOVE_BYTES {
+            return super::order::trace_by_first_hit(&job, starts, cancel);
+        }
+    }
     let chunks = n_emit.div_ceil(CHUNK);
     let parts: Vec<Traced> = (0..chunks)
         .into_par_iter()
@@ -125,6 +135,19 @@ pub(super) struct Job<'a> {
 impl Job<'_> {
     pub fn sampler(&self) -> Sampler {
         Sampler::new(SamplerKind::Independent, self.seed)
+    }
+
+    /// Photon `i`'s first ray, if it is traced at all (`sampler` is left
+    /// part way through its stream).
+    pub fn first_ray(&self, i: u64, sampler: &mut Sampler) -> Option<Ray> {
+        sampler.start_stream(i, 0);
+        emit(
+            self.scene,
+            self.n_emit,
+            (self.targets, self.starts),
+            sampler,
+        )
+        .map(|e| e.ray)
     }
 
     /// Traces photon `i`, adding what it stores to `out`.
