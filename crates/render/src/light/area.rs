@@ -154,19 +154,9 @@ impl AreaLight {
         cull: Option<&impl EmitCull>,
     ) -> Option<LeSample> {
         let sp = self.sample_point(shapes, u1);
-        let mut n = sp.n;
-        let mut u = u2;
-        let mut dir_pdf_scale = 1.0;
-        if self.two_sided {
-            // Pick a side, reusing the sample dimension.
-            if u.x < 0.5 {
-                u.x *= 2.0;
-            } else {
-                u.x = (u.x - 0.5) * 2.0;
-                n = -n;
-            }
-            dir_pdf_scale = 0.5;
-        }
+        let (back, u) = self.emission_side(u2);
+        let n = if back { -sp.n } else { sp.n };
+        let dir_pdf_scale = if self.two_sided { 0.5 } else { 1.0 };
         let o = offset_ray_origin(sp.p, n);
         if let Some(c) = cull {
             // The cosine-weighted direction's polar angle: its sine is the
@@ -192,6 +182,24 @@ impl AreaLight {
             delta_pos: false,
             delta_dir: false,
         })
+    }
+
+    /// The side a direction sample `u2` of [`AreaLight::sample_le_culled`]
+    /// leaves from (true: against the normal, for two-sided lights) and
+    /// the sample left for the direction about that side's normal.
+    #[inline]
+    pub fn emission_side(&self, mut u: Vec2) -> (bool, Vec2) {
+        if !self.two_sided {
+            return (false, u);
+        }
+        // Pick a side, reusing the sample dimension.
+        if u.x < 0.5 {
+            u.x *= 2.0;
+            (false, u)
+        } else {
+            u.x = (u.x - 0.5) * 2.0;
+            (true, u)
+        }
     }
 
     /// Emitted power: `pi * sides * area` times the mean radiance over the
