@@ -43,6 +43,11 @@ impl FlatTriangle {
         })
     }
 
+    /// The corners, which bound every sampled point, and the normal.
+    pub fn corners_and_normal(&self) -> ([Vec3; 3], Vec3) {
+        (self.corners, self.n)
+    }
+
     #[inline]
     pub fn sample(&self, u: Vec2) -> ShapePoint {
         let (b0, b1) = lumis_math::sampling::square_to_uniform_triangle(u);

@@ -192,6 +192,11 @@ impl Targets {
         self.spheres.is_empty()
     }
 
+    /// The spheres: centre and radius.
+    pub fn spheres(&self) -> &[(Vec3, f32)] {
+        &self.spheres
+    }
+
     /// Cosine of the half-angle of target `t` seen from `from`; None if `from` is inside it.
     fn cos_max(&self, from: Vec3, t: usize) -> Option<(Vec3, f32)> {
         let (c, r) = self.spheres[t];
@@ -233,7 +238,7 @@ impl Targets {
 /// `Targets`' [`EmitCull::cone_may_pass`] both pad it against rounding: by a thousandth
 /// of the radius and a millionth of the squared distance `d2` to it.
 #[inline(always)]
-fn padded_r2(r: f32, d2: f32) -> f32 {
+pub(super) fn padded_r2(r: f32, d2: f32) -> f32 {
     (r * 1.001) * (r * 1.001) + 1e-6 * d2
 }
 

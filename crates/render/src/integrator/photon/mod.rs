@@ -19,6 +19,7 @@ pub mod map;
 mod order;
 pub mod pass;
 pub mod photon;
+mod polar;
 pub mod progressive;
 pub mod radiance;
 pub mod radius_field;

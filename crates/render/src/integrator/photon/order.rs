@@ -213,6 +213,7 @@ mod tests {
             max_depth: 8,
             targets: None,
             starts: Some(starts),
+            windows: None,
             connect: Some(Vec2::splat(1.0)),
         };
         let never = AtomicBool::new(false);

@@ -5,6 +5,7 @@
 use super::aim::{aimed_emission, Aims, Targets};
 use super::connect::{to_camera, Connection};
 use super::photon::Photon;
+use super::polar::PolarWindows;
 use crate::bsdf::TransportMode;
 use crate::geometry::ray::spawn_ray;
 use crate::geometry::Ray;
@@ -68,6 +69,7 @@ pub fn trace_photons(
         MapKind::Caustic => (aims.aim.as_ref(), aims.starts.as_ref()),
         MapKind::Global => (None, None),
     };
+    let windows = starts.map(|s| PolarWindows::new(scene, s));
     let job = Job {
         scene,
         n_emit,
@@ -76,6 +78,7 @@ pub fn trace_photons(
         max_depth,
         targets,
         starts,
+        windows: windows.as_ref(),
         connect,
     };
     if let (MapKind::Caustic, Some(starts)) = (kind, starts) {
@@ -129,6 +132,8 @@ pub(super) struct Job<'a> {
     pub max_depth: u32,
     pub targets: Option<&'a Targets>,
     pub starts: Option<&'a Targets>,
+    /// Light-wide polar-angle tests of caustic photons (with `starts`).
+    pub windows: Option<&'a PolarWindows>,
     pub connect: Option<Vec2>,
 }
 
@@ -141,13 +146,7 @@ impl Job<'_> {
     /// part way through its stream).
     pub fn first_ray(&self, i: u64, sampler: &mut Sampler) -> Option<Ray> {
         sampler.start_stream(i, 0);
-        emit(
-            self.scene,
-            self.n_emit,
-            (self.targets, self.starts),
-            sampler,
-        )
-        .map(|e| e.ray)
+        self.emit(sampler).map(|e| e.ray)
     }
 
     /// Traces photon `i`, adding what it stores to `out`.
@@ -161,16 +160,11 @@ impl Job<'_> {
                 rng: Pcg32::new(hash(&[seed, i, 0xc0_11ec7]), 0),
             }
         });
-        trace_one(
-            self.scene,
-            self.n_emit,
-            (self.kind, self.max_depth),
-            (self.targets, self.starts),
-            connect,
-            sampler,
-            out,
-            rays,
-        );
+        let Some(e) = self.emit(sampler) else {
+            return;
+        };
+        let (scene, kind_depth) = (self.scene, (self.kind, self.max_depth));
+        trace_from(scene, e, kind_depth, connect, sampler, out, rays);
     }
 
     /// Adds `rays` photon rays to the scene's counters.
@@ -190,23 +184,6 @@ struct Connect {
     rng: Pcg32,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn trace_one(
-    scene: &Scene,
-    n_emit: u64,
-    (kind, max_depth): (MapKind, u32),
-    (targets, starts): (Option<&Targets>, Option<&Targets>),
-    connect: Option<impl FnOnce() -> Connect>,
-    sampler: &mut Sampler,
-    out: &mut Traced,
-    rays: &mut u64,
-) {
-    let Some(e) = emit(scene, n_emit, (targets, starts), sampler) else {
-        return;
-    };
-    trace_from(scene, e, (kind, max_depth), connect, sampler, out, rays);
-}
-
 /// A photon as it leaves its light: the light, the first ray, the power
 /// and the emitted luminance at the origin (infinite for delta lights).
 struct Emission {
@@ -216,55 +193,56 @@ struct Emission {
     le_lum: f32,
 }
 
-/// The emission of the photon whose stream `sampler` starts, or None for
-/// one that is not traced (no light, zero power, or a caustic photon that
-/// `starts` drops).
-fn emit(
-    scene: &Scene,
-    n_emit: u64,
-    (targets, starts): (Option<&Targets>, Option<&Targets>),
-    sampler: &mut Sampler,
-) -> Option<Emission> {
-    let (li, pmf) = scene.light_sampler.sample(sampler.get_1d())?;
-    let light = &scene.lights[li as usize];
-    let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
-    // Aimed caustic photons (area, point, spot lights), else ordinary emission.
-    let aimed =
-        targets.and_then(|t| aimed_emission(scene, t, light, pmf, u1, sampler.get_1d(), u2));
-    // A caustic photon ends unstored where its first hit has no specular
-    // part, so one whose first ray misses every shape that has one is
-    // dropped as soon as its ray is known (most are, where those shapes
-    // are small), before its flux. (`starts` is given for caustic photons
-    // in scenes without media only.)
-    let dropped = |ray: &Ray| starts.is_some_and(|t| !t.may_hit(ray));
-    let (ray, flux, le_rgb) = match aimed {
-        Some(Some(e)) if dropped(&e.0) => return None,
-        Some(Some(e)) => e,
-        Some(None) => return None,
-        None => {
-            let le = light.sample_le_culled(&scene.shapes, u1, u2, starts)?;
-            if dropped(&le.ray) {
-                return None;
+impl Job<'_> {
+    /// The emission of the photon whose stream `sampler` starts, or None for
+    /// one that is not traced (no light, zero power, or a caustic photon that
+    /// `starts` drops).
+    fn emit(&self, sampler: &mut Sampler) -> Option<Emission> {
+        let (scene, n_emit, targets, starts) = (self.scene, self.n_emit, self.targets, self.starts);
+        let (li, pmf) = scene.light_sampler.sample(sampler.get_1d())?;
+        let light = &scene.lights[li as usize];
+        let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
+        // Aimed caustic photons (area, point, spot lights), else ordinary emission.
+        let aimed =
+            targets.and_then(|t| aimed_emission(scene, t, light, pmf, u1, sampler.get_1d(), u2));
+        // A caustic photon ends unstored where its first hit has no specular
+        // part, so one whose first ray misses every shape that has one is
+        // dropped as soon as its ray is known (most are, where those shapes
+        // are small), before its flux. (`starts` is given for caustic photons
+        // in scenes without media only.)
+        let dropped = |ray: &Ray| starts.is_some_and(|t| !t.may_hit(ray));
+        let (ray, flux, le_rgb) = match aimed {
+            Some(Some(e)) if dropped(&e.0) => return None,
+            Some(Some(e)) => e,
+            Some(None) => return None,
+            None => {
+                if self.windows.is_some_and(|w| !w.may_pass(li, light, u2)) {
+                    return None;
+                }
+                let le = light.sample_le_culled(&scene.shapes, u1, u2, starts)?;
+                if dropped(&le.ray) {
+                    return None;
+                }
+                (le.ray, le.flux_weight() / pmf, le.le)
             }
-            (le.ray, le.flux_weight() / pmf, le.le)
+        };
+        let power: Rgb = flux / n_emit as f32;
+        if !power.is_finite() || power.is_black() {
+            return None;
         }
-    };
-    let power: Rgb = flux / n_emit as f32;
-    if !power.is_finite() || power.is_black() {
-        return None;
+        // Emitted luminance at the origin; infinite for delta lights (the seed's L_e).
+        let le_lum = if light.is_delta() {
+            f32::INFINITY
+        } else {
+            le_rgb.luminance()
+        };
+        Some(Emission {
+            li,
+            ray,
+            power,
+            le_lum,
+        })
     }
-    // Emitted luminance at the origin; infinite for delta lights (the seed's L_e).
-    let le_lum = if light.is_delta() {
-        f32::INFINITY
-    } else {
-        le_rgb.luminance()
-    };
-    Some(Emission {
-        li,
-        ray,
-        power,
-        le_lum,
-    })
 }
 
 /// Traces an emitted photon on (the rest of its stream in `sampler`).
