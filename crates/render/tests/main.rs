@@ -40,6 +40,7 @@ mod phase_chi2;
 mod photon_consistency;
 mod photon_emission;
 mod photon_map;
+mod photon_order;
 mod photon_progressive;
 mod resume;
 mod scene_errors;

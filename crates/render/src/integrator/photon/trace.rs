@@ -167,33 +167,6 @@ impl Job<'_> {
         trace_from(scene, e, kind_depth, connect, sampler, out, rays);
     }
 
-    /// Adds `rays` photon rays to the scene's counters.
-    pub fn count(&self, rays: u64) {
-        self.scene.count_rays(rays);
-        self.scene
-            .counters
-            .photon_rays
-            .fetch_add(rays, Ordering::Relaxed);
-    }
-}
-
-/// A photon's connections to the camera: the film margin, and a stream of
-/// its own, so the photon's path (and the maps) are those without them.
-struct Connect {
-    margin: Vec2,
-    rng: Pcg32,
-}
-
-/// A photon as it leaves its light: the light, the first ray, the power
-/// and the emitted luminance at the origin (infinite for delta lights).
-struct Emission {
-    li: u32,
-    ray: Ray,
-    power: Rgb,
-    le_lum: f32,
-}
-
-impl Job<'_> {
     /// The emission of the photon whose stream `sampler` starts, or None for
     /// one that is not traced (no light, zero power, or a caustic photon that
     /// `starts` drops).
@@ -243,6 +216,31 @@ impl Job<'_> {
             le_lum,
         })
     }
+
+    /// Adds `rays` photon rays to the scene's counters.
+    pub fn count(&self, rays: u64) {
+        self.scene.count_rays(rays);
+        self.scene
+            .counters
+            .photon_rays
+            .fetch_add(rays, Ordering::Relaxed);
+    }
+}
+
+/// A photon's connections to the camera: the film margin, and a stream of
+/// its own, so the photon's path (and the maps) are those without them.
+struct Connect {
+    margin: Vec2,
+    rng: Pcg32,
+}
+
+/// A photon as it leaves its light: the light, the first ray, the power
+/// and the emitted luminance at the origin (infinite for delta lights).
+struct Emission {
+    li: u32,
+    ray: Ray,
+    power: Rgb,
+    le_lum: f32,
 }
 
 /// Traces an emitted photon on (the rest of its stream in `sampler`).
