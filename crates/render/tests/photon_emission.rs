@@ -392,6 +392,16 @@ fn caustic_photons_are_skipped_only_where_no_specular_shape_can_be_hit() {
     );
 }
 
+/// A glass sphere and a smooth conductor tetrahedron with two area lights
+/// close to them (wide cones; the second two-sided), for the emission
+/// culling tests; each adds a light and [`FLOOR`].
+const NEAR_LIGHTS: &str = "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n\
+    AttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate 0.2 0.1 1\nShape \"sphere\" \"float radius\" [ 0.3 ]\nAttributeEnd\n\
+    AttributeBegin\nMaterial \"conductor\"\nTranslate -0.6 0.2 0.4\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  0.4 0 0  0 0.4 0  0 0 0.4 ] \"integer indices\" [ 0 2 1  0 1 3  0 3 2  1 2 3 ]\nAttributeEnd\n\
+    AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"trianglemesh\" \"point3 P\" [ -0.5 -0.5 1.5  0.5 -0.5 1.5  0.5 0.5 1.5  -0.5 0.5 1.5 ] \"integer indices\" [ 0 2 1 0 3 2 ]\nAttributeEnd\n\
+    AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 2 1 1 ] \"bool twosided\" true\nShape \"trianglemesh\" \"point3 P\" [ -1 -1 0.1  1.5 -1 0.3  0 1.5 0.9 ] \"integer indices\" [ 0 1 2 ]\nAttributeEnd\n";
+const FLOOR: &str = "Material \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [ -9 -9 0  9 -9 0  9 9 0  -9 9 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n";
+
 /// Area lights drop a caustic photon before finishing its sample only when
 /// no direction at its polar angle can meet a shape that can be specular
 /// (`Light::sample_le_culled` with `Targets::starts`): every sample the
@@ -402,14 +412,9 @@ fn caustic_photons_are_skipped_only_where_no_specular_shape_can_be_hit() {
 fn early_dropped_emissions_are_only_those_the_exact_test_refuses() {
     use lumis_math::rng::Pcg32;
     use lumis_math::Vec2;
-    let text = "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer yresolution\" [ 4 ]\nCamera \"perspective\"\nWorldBegin\n\
-        AttributeBegin\nMaterial \"dielectric\" \"float eta\" [ 1.5 ]\nTranslate 0.2 0.1 1\nShape \"sphere\" \"float radius\" [ 0.3 ]\nAttributeEnd\n\
-        AttributeBegin\nMaterial \"conductor\"\nTranslate -0.6 0.2 0.4\nShape \"trianglemesh\" \"point3 P\" [ 0 0 0  0.4 0 0  0 0.4 0  0 0 0.4 ] \"integer indices\" [ 0 2 1  0 1 3  0 3 2  1 2 3 ]\nAttributeEnd\n\
-        AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"trianglemesh\" \"point3 P\" [ -0.5 -0.5 1.5  0.5 -0.5 1.5  0.5 0.5 1.5  -0.5 0.5 1.5 ] \"integer indices\" [ 0 2 1 0 3 2 ]\nAttributeEnd\n\
-        AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 2 1 1 ] \"bool twosided\" true\nShape \"trianglemesh\" \"point3 P\" [ -1 -1 0.1  1.5 -1 0.3  0 1.5 0.9 ] \"integer indices\" [ 0 1 2 ]\nAttributeEnd\n\
-        AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 2 1 ]\nTranslate 0.9 0.1 1.1\nShape \"sphere\" \"float radius\" [ 0.15 ]\nAttributeEnd\n\
-        Material \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [ -9 -9 0  9 -9 0  9 9 0  -9 9 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n";
-    let l = load(text, &Default::default());
+    let text = format!("{NEAR_LIGHTS}\
+        AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 2 1 ]\nTranslate 0.9 0.1 1.1\nShape \"sphere\" \"float radius\" [ 0.15 ]\nAttributeEnd\n{FLOOR}");
+    let l = load(&text, &Default::default());
     let scene = &l.scene;
     let starts = Targets::starts(scene).expect("few specular shapes");
     assert_eq!(
@@ -452,4 +457,50 @@ fn early_dropped_emissions_are_only_those_the_exact_test_refuses() {
         early * 10 >= refused * 6,
         "most refusals early: {early} of {refused}"
     );
+}
+
+/// A photon the windows refuse is one whose ray `may_hit` refuses, for
+/// lights close to the spheres (wide windows), a two-sided light and
+/// directions within 1e-7 of the horizon; and the windows refuse most
+/// of the photons refused on a light far from the spheres.
+#[test]
+fn windows_refuse_only_rays_that_miss_every_start() {
+    use lumis_math::rng::Pcg32;
+    use lumis_math::Vec2;
+    use lumis_render::integrator::photon::polar::PolarWindows;
+    let text = format!("{NEAR_LIGHTS}\
+        AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 2 ]\nShape \"trianglemesh\" \"point3 P\" [ 3 3 6  3.2 3 6  3 3.2 6 ] \"integer indices\" [ 0 2 1 ]\nAttributeEnd\n{FLOOR}");
+    let l = load(&text, &Default::default());
+    let scene = &l.scene;
+    let starts = Targets::starts(scene).expect("two specular shapes");
+    let windows = PolarWindows::new(scene, &starts);
+    assert_eq!(scene.lights.len(), 4, "two quad triangles, two triangles");
+    let mut rng = Pcg32::new(9, 1);
+    // Per light: refused by `may_hit`, and of those by the windows.
+    let mut refused = [(0u32, 0u32); 4];
+    for i in 0..400_000 {
+        let li = i % scene.lights.len();
+        let light = &scene.lights[li];
+        let mut u = || rng.next_f32();
+        let u1 = Vec2::new(u(), u());
+        let mut u2 = Vec2::new(u(), u());
+        if i % 4 == 1 {
+            let edge = 10f32.powf(-7.0 + 3.0 * u());
+            u2.y = if u() < 0.5 { edge } else { 1.0 - edge };
+        }
+        let pass = windows.may_pass(li as u32, light, u2);
+        let Some(full) = light.sample_le(&scene.shapes, u1, u2) else {
+            continue;
+        };
+        if starts.may_hit(&full.ray) {
+            assert!(pass, "light {li}, sample {i} refused: {full:?}");
+        } else {
+            refused[li].0 += 1;
+            refused[li].1 += u32::from(!pass);
+        }
+    }
+    eprintln!("refused by may_hit, and of those by the windows: {refused:?}");
+    // The far light sees both spheres in a narrow window.
+    let (all, early) = refused[3];
+    assert!(early * 10 >= all * 8, "{early} of {all}");
 }
