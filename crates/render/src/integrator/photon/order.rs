@@ -25,7 +25,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub const SORT_ABOVE_BYTES: usize = 2 << 20;
 /// Photons emitted per batch: the more photons are sorted together, the
 /// closer neighbours are (the glass box traces about 8% of its caustic
-/// photons; with batches of 2^18 a run of 5M was 0.91x slower than with
+/// photons; with batches of 2^18 a run of 5M took 1.1x the time of
 /// one sort of all). The keys take 8 bytes per traced photon, at most
 /// 32 MiB, where the map takes 36 per photon it stores.
 const BATCH: u64 = 1 << 22;
