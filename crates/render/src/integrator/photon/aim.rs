@@ -82,17 +82,7 @@ impl Targets {
     /// never refused.
     pub fn may_hit(&self, ray: &Ray) -> bool {
         let inv_len2 = 1.0 / ray.d.length_squared();
-        self.spheres.iter().any(|&(c, r)| {
-            let oc = c - ray.o;
-            let d2 = oc.length_squared();
-            let r2 = padded_r2(r, d2);
-            if d2 <= r2 {
-                return true;
-            }
-            let t = oc.dot(ray.d);
-            // Ahead of the origin, and its centre within `r` of the line.
-            t > 0.0 && (oc - ray.d * (t * inv_len2)).length_squared() <= r2
-        })
+        (self.spheres.iter()).any(|&(c, r)| meets(ray, inv_len2, c, r).is_some())
     }
 
     /// A key that orders rays by where they meet the spheres: the first
@@ -103,24 +93,16 @@ impl Targets {
     /// ray may hit none.
     pub fn order_key(&self, ray: &Ray) -> Option<u32> {
         let inv_len2 = 1.0 / ray.d.length_squared();
-        let mut best: Option<(f32, usize, Vec3)> = None;
+        let mut best: Option<(f32, usize)> = None;
         for (k, &(c, r)) in self.spheres.iter().enumerate() {
-            let oc = c - ray.o;
-            let d2 = oc.length_squared();
-            let r2 = padded_r2(r, d2);
-            let t = oc.dot(ray.d) * inv_len2;
-            let p = ray.o + ray.d * t.max(0.0);
-            let inside = d2 <= r2;
-            if !(inside || t > 0.0 && (c - p).length_squared() <= r2) {
-                continue;
-            }
-            // Distance along the ray to where it enters the sphere, roughly.
-            let entry = if inside { 0.0 } else { t };
-            if best.is_none_or(|b| entry < b.0) {
-                best = Some((entry, k, p));
+            if let Some(s) = meets(ray, inv_len2, c, r) {
+                if best.is_none_or(|b| s < b.0) {
+                    best = Some((s, k));
+                }
             }
         }
-        let (_, k, p) = best?;
+        let (s, k) = best?;
+        let p = ray.o + ray.d * s;
         let (c, r) = self.spheres[k];
         let cell = |x: f32, cx: f32| {
             let u = (x - (cx - r)) / (2.0 * r);
@@ -232,6 +214,24 @@ impl Targets {
         }
         p / n
     }
+}
+
+/// Where `ray` may meet sphere `(c, r)`, padded as [`padded_r2`] pads it:
+/// `Some(0)` from inside it, `Some(s)` where the line's point nearest the
+/// centre, `o + s d`, is ahead of the origin and within the padded radius;
+/// else None.
+#[inline(always)]
+fn meets(ray: &Ray, inv_len2: f32, c: Vec3, r: f32) -> Option<f32> {
+    let oc = c - ray.o;
+    let d2 = oc.length_squared();
+    let r2 = padded_r2(r, d2);
+    if d2 <= r2 {
+        return Some(0.0);
+    }
+    let t = oc.dot(ray.d);
+    let s = t * inv_len2;
+    // Ahead of the origin, and its centre within `r` of the line.
+    (t > 0.0 && (oc - ray.d * s).length_squared() <= r2).then_some(s)
 }
 
 /// A start sphere's squared radius `r` as [`Targets::may_hit`] and
