@@ -466,8 +466,11 @@ fn early_dropped_emissions_are_only_those_the_exact_test_refuses() {
 #[test]
 fn windows_refuse_only_rays_that_miss_every_start() {
     use lumis_math::rng::Pcg32;
+    use lumis_math::safe_sqrt;
+    use lumis_math::sampling::disk_concentric_radius;
     use lumis_math::Vec2;
     use lumis_render::integrator::photon::polar::PolarWindows;
+    use lumis_render::light::{EmitCull, Light};
     let text = format!("{NEAR_LIGHTS}\
         AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 2 ]\nShape \"trianglemesh\" \"point3 P\" [ 3 3 6  3.2 3 6  3 3.2 6 ] \"integer indices\" [ 0 2 1 ]\nAttributeEnd\n{FLOOR}");
     let l = load(&text, &Default::default());
@@ -488,7 +491,14 @@ fn windows_refuse_only_rays_that_miss_every_start() {
             let edge = 10f32.powf(-7.0 + 3.0 * u());
             u2.y = if u() < 0.5 { edge } else { 1.0 - edge };
         }
-        let pass = windows.may_pass(li as u32, light, u2);
+        // The side and polar angle `sample_le_culled` gives the windows.
+        let Light::Area(area) = light else {
+            panic!("area lights only")
+        };
+        let (back, u) = area.emission_side(u2);
+        let sin_t = disk_concentric_radius(u);
+        let cos_t = safe_sqrt(1.0 - sin_t * sin_t);
+        let pass = windows.cull(li as u32, &starts).polar_may_pass(back, cos_t);
         let Some(full) = light.sample_le(&scene.shapes, u1, u2) else {
             continue;
         };

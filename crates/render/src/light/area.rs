@@ -143,8 +143,9 @@ impl AreaLight {
 
     /// An emitted ray: a point by area, a cosine-weighted direction; or
     /// `None` as soon as `cull` says that no direction at the sampled polar
-    /// angle can be kept (before the direction's azimuth, frame and
-    /// radiance are computed). A sample `cull` does not refuse is the one
+    /// angle can be kept, from anywhere on the light (before the point is
+    /// sampled) or from the sampled point (before the direction's azimuth,
+    /// frame and radiance are computed). A sample `cull` does not refuse is the one
     /// it gives without `cull`.
     pub fn sample_le_culled(
         &self,
@@ -153,18 +154,22 @@ impl AreaLight {
         u2: Vec2,
         cull: Option<&impl EmitCull>,
     ) -> Option<LeSample> {
-        let sp = self.sample_point(shapes, u1);
         let (back, u) = self.emission_side(u2);
+        // The cosine-weighted direction's polar angle: its sine is the
+        // concentric disc point's radius.
+        let polar = cull.map(|c| {
+            let sin_t = disk_concentric_radius(u);
+            (c, sin_t, safe_sqrt(1.0 - sin_t * sin_t))
+        });
+        if polar.is_some_and(|(c, _, cos_t)| !c.polar_may_pass(back, cos_t)) {
+            return None;
+        }
+        let sp = self.sample_point(shapes, u1);
         let n = if back { -sp.n } else { sp.n };
         let dir_pdf_scale = if self.two_sided { 0.5 } else { 1.0 };
         let o = offset_ray_origin(sp.p, n);
-        if let Some(c) = cull {
-            // The cosine-weighted direction's polar angle: its sine is the
-            // concentric disc point's radius.
-            let sin_t = disk_concentric_radius(u);
-            if !c.cone_may_pass(o, n, sin_t, safe_sqrt(1.0 - sin_t * sin_t)) {
-                return None;
-            }
+        if polar.is_some_and(|(c, sin_t, cos_t)| !c.cone_may_pass(o, n, sin_t, cos_t)) {
+            return None;
         }
         let local = square_to_cosine_hemisphere(u);
         let d = Frame::from_normal(n).to_world(local);

@@ -36,6 +36,14 @@ pub trait EmitCull {
     /// sine `sin_t` and cosine `cos_t` with the unit vector `n` would be
     /// kept; allowed to err towards true, never towards false.
     fn cone_may_pass(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool;
+
+    /// False only when no ray from anywhere on the light whose direction
+    /// makes the angle of cosine `cos_t` with its side's normal (`back`:
+    /// the side against the normal) would be kept: tested before the
+    /// point on the light is sampled. Allowed to err towards true.
+    fn polar_may_pass(&self, _back: bool, _cos_t: f32) -> bool {
+        true
+    }
 }
 
 /// The [`EmitCull`] that keeps every ray.

@@ -2,22 +2,22 @@
 //! point on the light is sampled.
 //!
 //! A caustic photon from a flat area light is refused by its polar angle
-//! in [`AreaLight::sample_le_culled`] (the cone test at the sampled point)
+//! in [`crate::light::AreaLight::sample_le_culled`] (the cone test at the sampled point)
 //! and by [`Targets::may_hit`] after its ray is made. On a small light most
 //! refused photons are refused by their polar angle alone, but only after
 //! the point, its ray origin and the cone test were computed. Here each
 //! flat light gets, per side, the polar angles at which a ray from
 //! anywhere on it may meet one of the start spheres; a photon whose
-//! direction sample falls outside them is refused before anything else.
+//! direction sample falls outside them is refused before its point is
+//! sampled ([`EmitCull::polar_may_pass`]).
 //! The windows are conservative by margins well above rounding, so a
 //! photon they refuse is one `may_hit` refuses: the photons traced, and
 //! the maps, are those without them.
 
 use super::aim::{padded_r2, Targets};
-use crate::light::Light;
+use crate::light::{EmitCull, Light};
 use crate::scene::Scene;
-use lumis_math::sampling::disk_concentric_radius;
-use lumis_math::{safe_sqrt, Vec2, Vec3};
+use lumis_math::Vec3;
 
 /// Per light, the ranges of `cos(theta)` about each side's normal (front,
 /// back) at which a ray from the light may meet a start sphere; None for
@@ -36,6 +36,7 @@ type Ranges = Vec<(f32, f32)>;
 const SLACK: f64 = 2e-3;
 
 impl PolarWindows {
+    /// The windows of the scene's lights towards the start spheres `starts`.
     pub fn new(scene: &Scene, starts: &Targets) -> PolarWindows {
         let lights = scene
             .lights
@@ -60,20 +61,35 @@ impl PolarWindows {
         PolarWindows { lights }
     }
 
-    /// False only when light `li`'s direction sample `u2` gives a polar
-    /// angle at which no ray from the light can meet a start sphere.
+    /// What light `li`'s caustic photons are culled by: its windows (if it
+    /// has any) before its point is sampled, the cone test of `starts` (the
+    /// spheres the windows were made for) after.
     #[inline]
-    pub fn may_pass(&self, li: u32, light: &Light, u2: Vec2) -> bool {
-        let (Some(Some(sides)), Light::Area(a)) = (self.lights.get(li as usize), light) else {
-            return true;
-        };
-        let (back, u) = a.emission_side(u2);
-        // The cosine-weighted direction's polar angle, as the light makes it.
-        let sin_t = disk_concentric_radius(u);
-        let cos_t = safe_sqrt(1.0 - sin_t * sin_t);
-        sides[back as usize]
-            .iter()
-            .any(|&(lo, hi)| lo <= cos_t && cos_t <= hi)
+    pub fn cull<'a>(&'a self, li: u32, starts: &'a Targets) -> LightCull<'a> {
+        LightCull {
+            starts,
+            windows: self.lights.get(li as usize).and_then(Option::as_ref),
+        }
+    }
+}
+
+/// One light's [`EmitCull`] for caustic photons.
+pub struct LightCull<'a> {
+    starts: &'a Targets,
+    windows: Option<&'a [Ranges; 2]>,
+}
+
+impl EmitCull for LightCull<'_> {
+    fn cone_may_pass(&self, o: Vec3, n: Vec3, sin_t: f32, cos_t: f32) -> bool {
+        self.starts.cone_may_pass(o, n, sin_t, cos_t)
+    }
+
+    fn polar_may_pass(&self, back: bool, cos_t: f32) -> bool {
+        self.windows.is_none_or(|w| {
+            w[back as usize]
+                .iter()
+                .any(|&(lo, hi)| lo <= cos_t && cos_t <= hi)
+        })
     }
 }
 

@@ -189,10 +189,8 @@ impl Job<'_> {
             Some(Some(e)) => e,
             Some(None) => return None,
             None => {
-                if self.windows.is_some_and(|w| !w.may_pass(li, light, u2)) {
-                    return None;
-                }
-                let le = light.sample_le_culled(&scene.shapes, u1, u2, starts)?;
+                let cull = self.windows.zip(starts).map(|(w, s)| w.cull(li, s));
+                let le = light.sample_le_culled(&scene.shapes, u1, u2, cull.as_ref())?;
                 if dropped(&le.ray) {
                     return None;
                 }
