@@ -119,9 +119,16 @@ impl Checkpoint {
             o.extend_from_slice(&v.to_le_bytes());
         }
         o.extend_from_slice(&f.splat_samples.to_le_bytes());
-        o.push(!f.splats.is_empty() as u8);
+        // Bit 0: light splats; bit 1: a splatting filter's weights.
+        o.push(!f.splats.is_empty() as u8 | (!f.weights.is_empty() as u8) << 1);
         pack::pack(&f.pixels, PIXEL_BYTES, put_pixel, &mut o);
         pack::pack(&f.splats, SPLAT_BYTES, put_splat, &mut o);
+        pack::pack(
+            &f.weights,
+            16,
+            |w, o| o.extend_from_slice(&w.to_le_bytes()),
+            &mut o,
+        );
         let h = Fnv::default().write(&o).0;
         o.extend_from_slice(&h.to_le_bytes());
         o
@@ -188,7 +195,11 @@ impl Checkpoint {
             return Err(damaged("bad film bounds"));
         }
         let splat_samples = r.u32()?;
-        let has_splats = r.take(1)?[0] != 0;
+        let parts = r.take(1)?[0];
+        if parts > 3 {
+            return Err(damaged("unknown film parts"));
+        }
+        let (has_splats, has_weights) = (parts & 1 != 0, parts & 2 != 0);
         if bounds.area() > crate::film::MAX_PIXELS {
             return Err(damaged("bad film bounds"));
         }
@@ -198,7 +209,11 @@ impl Checkpoint {
         let splat_count = if has_splats { area } else { 0 };
         let (splats, used2) =
             pack::unpack(&rest[used..], splat_count, SPLAT_BYTES, get_splat).map_err(damaged)?;
-        if used + used2 != rest.len() {
+        let weight_count = if has_weights { area } else { 0 };
+        let (weights, used3) =
+            pack::unpack(&rest[used + used2..], weight_count, 16, |b| i128_at(b, 0))
+                .map_err(damaged)?;
+        if used + used2 + used3 != rest.len() {
             return Err(damaged("pixel data does not match the film size"));
         }
         Ok(Checkpoint {
@@ -212,6 +227,7 @@ impl Checkpoint {
                     pixels,
                     splats,
                     splat_samples,
+                    weights,
                 },
                 spp_done,
                 integrator,
@@ -359,6 +375,22 @@ mod tests {
                 elapsed: Duration::from_millis(1500),
             },
         }
+    }
+
+    #[test]
+    fn a_splatting_films_weights_round_trip() {
+        let mut c = sample();
+        c.state.film.weights = (0..c.state.film.pixels.len() as i128)
+            .map(|i| i << 70 | 5)
+            .collect();
+        let bytes = c.encode();
+        let d = Checkpoint::decode(&bytes, "x").unwrap();
+        assert_eq!(d.state.film.weights, c.state.film.weights);
+        assert_eq!(d.state.film.splats, c.state.film.splats);
+        assert_eq!(d.encode(), bytes);
+        // Without weights the film has none after decoding.
+        let plain = Checkpoint::decode(&sample().encode(), "x").unwrap();
+        assert!(plain.state.film.weights.is_empty());
     }
 
     #[test]

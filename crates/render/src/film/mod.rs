@@ -2,8 +2,9 @@
 //! (exact and associative, so renders split into parts merge to the same
 //! bits), pixel bounds, the
 //! film size limit, and pixel filters applied by importance sampling so
-//! each sample touches only its own pixel (which keeps images independent
-//! of thread count).
+//! each sample touches only its own pixel, or by splatting with weights
+//! summed per pixel (`weights`); in both, sums are exact, so images do not
+//! depend on the thread count.
 
 pub mod exact;
 mod filter;
@@ -106,6 +107,12 @@ pub struct Film {
     /// taken (pbrt-v4's rule).
     pub splats: Vec<[i128; 3]>,
     pub splat_samples: u32,
+    /// With a splatting filter (`Filter::splat`): per pixel, the sum of the
+    /// filter weights of the samples its sums hold (weighted samples, one
+    /// per sample index: `integrator/splatted.rs`), in fixed point like
+    /// them; the pixel's value is then its sum divided by this instead of
+    /// by its count. Empty otherwise.
+    pub weights: Vec<i128>,
 }
 
 impl Film {
@@ -116,6 +123,7 @@ impl Film {
             pixels: vec![Pixel::default(); bounds.area() as usize],
             splats: Vec::new(),
             splat_samples: 0,
+            weights: Vec::new(),
         }
     }
 
@@ -127,6 +135,7 @@ impl Film {
             pixels: Vec::new(),
             splats: Vec::new(),
             splat_samples: self.splat_samples,
+            weights: Vec::new(),
         }
     }
 
@@ -172,6 +181,12 @@ impl Film {
             }
         }
         self.splat_samples += o.splat_samples;
+        if !o.weights.is_empty() {
+            self.weights.resize(self.pixels.len(), 0);
+            for (a, b) in self.weights.iter_mut().zip(&o.weights) {
+                *a = a.wrapping_add(*b);
+            }
+        }
         Ok(())
     }
 
@@ -185,11 +200,23 @@ impl Film {
     /// Mean image, row-major RGB triples: each pixel's sample mean, plus
     /// its splats divided by the samples per pixel.
     pub fn mean_image(&self) -> Vec<f32> {
-        let mut img: Vec<f32> = self
-            .pixels
-            .iter()
-            .flat_map(|p| p.mean_rgb().to_array())
-            .collect();
+        let mut img: Vec<f32> = if self.weights.is_empty() {
+            self.pixels
+                .iter()
+                .flat_map(|p| p.mean_rgb().to_array())
+                .collect()
+        } else {
+            // Splatted: weighted sums over the weights.
+            self.pixels
+                .iter()
+                .zip(&self.weights)
+                .flat_map(|(p, &w)| {
+                    let w = exact::sum_value(w);
+                    let inv = if w > 0.0 { 1.0 / w } else { 0.0 };
+                    p.sum.map(|s| (exact::sum_value(s) * inv) as f32)
+                })
+                .collect()
+        };
         if !self.splats.is_empty() {
             let inv = 1.0 / self.splat_samples.max(1) as f64;
             for (px, s) in img.chunks_exact_mut(3).zip(&self.splats) {
@@ -202,10 +229,21 @@ impl Film {
     }
 
     /// Variance-of-the-mean image, row-major RGB triples.
+    /// Splatted, the weighted samples' variance scaled by the square of
+    /// count over weight (as if each sample's weight were the mean weight).
     pub fn variance_image(&self) -> Vec<f32> {
         self.pixels
             .iter()
-            .flat_map(|p| p.variance_of_mean().to_array())
+            .enumerate()
+            .flat_map(|(i, p)| {
+                let v = p.variance_of_mean();
+                let scale = match self.weights.get(i) {
+                    Some(&w) if w > 0 => (p.n as f64 / exact::sum_value(w)).powi(2) as f32,
+                    Some(_) => 0.0,
+                    None => 1.0,
+                };
+                (v * scale).to_array()
+            })
             .collect()
     }
 }
@@ -260,6 +298,24 @@ mod tests {
             assert_eq!(merged.pixels, whole.pixels, "{cuts:?}");
             assert_eq!(merged.splats, whole.splats);
             assert_eq!(merged.mean_image(), whole.mean_image());
+        }
+        // A splatting filter's films: the weights merge like the sums, and
+        // the image divides by them.
+        let weighted = |passes: std::ops::Range<usize>| {
+            let mut f = render(passes.clone());
+            f.weights = (0..6)
+                .map(|i| exact::sum_units(0.25 * (i + passes.len()) as f64))
+                .collect();
+            f
+        };
+        let mut merged = weighted(0..13);
+        merged.merge(&weighted(13..40)).unwrap();
+        let sums = whole.pixels[4].sum.map(exact::sum_value);
+        let w = 0.25 * (4 + 13) as f64 + 0.25 * (4 + 27) as f64;
+        for (c, s) in sums.iter().enumerate() {
+            let own = (s * (1.0 / w)) as f32;
+            let want = (own as f64 + exact::sum_value(whole.splats[4][c]) * (1.0 / 40.0)) as f32;
+            assert_eq!(merged.mean_image()[12 + c], want);
         }
         let other = Film::new((4, 2), b);
         assert!(Film::new((3, 2), b).merge(&other).is_err());

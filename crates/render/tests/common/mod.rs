@@ -221,7 +221,7 @@ pub fn render_session(
 
 /// Whether two films hold the same per-pixel statistics, bit for bit.
 pub fn same_bits(a: &Film, b: &Film) -> bool {
-    a.pixels == b.pixels && a.splats == b.splats
+    a.pixels == b.pixels && a.splats == b.splats && a.weights == b.weights
 }
 
 /// `scenes/test/<name>.pbrt`.
