@@ -141,6 +141,9 @@ pub struct RenderArgs {
     /// Scale each sample down so no component exceeds VALUE (biased; off by default).
     #[arg(long, value_name = "VALUE")]
     pub clamp: Option<f32>,
+    /// Reconstruct by splatting each sample into every pixel the pixel filter reaches, weighted (Mitsuba's way; less noise per sample with filters wider than a pixel), instead of sampling the filter (pbrt-v4's); overrides PixelFilter's `splat`.
+    #[arg(long, value_name = "true|false", num_args = 0..=1, default_missing_value = "true")]
+    pub filter_splat: Option<bool>,
     /// Ray-tracing backend: the built-in BVH, or Embree 3 (builds with `--features embree`).
     #[arg(long, value_name = "bvh|embree")]
     pub accel: Option<String>,

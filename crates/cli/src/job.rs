@@ -27,6 +27,7 @@ fn flags(a: &RenderArgs) -> RenderFlags {
         exposure: a.exposure,
         sampler: a.sampler.clone(),
         clamp: a.clamp,
+        filter_splat: a.filter_splat,
         accel: a.accel.clone(),
         params: a.params.values.clone(),
         checkpoint: a.checkpoint.clone(),
@@ -50,6 +51,7 @@ pub fn resumed_job(a: &RenderArgs, mut job: RenderJob) -> Result<RenderJob> {
         || a.crop.is_some()
         || a.sampler.is_some()
         || a.clamp.is_some()
+        || a.filter_splat.is_some()
         || a.accel.is_some()
         || a.exposure != 0.0
         || !a.params.values.is_empty()

@@ -19,6 +19,7 @@ mod cornell_tungsten;
 mod default_scene;
 mod determinism;
 mod env_light;
+mod film_splat;
 mod furnace;
 mod fuzz_corpus;
 mod inputs;

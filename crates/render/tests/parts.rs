@@ -53,6 +53,7 @@ fn assert_same_film(a: &Film, b: &Film, what: &str) {
     assert_eq!(a.pixels.len(), b.pixels.len());
     assert_eq!(a.splats, b.splats, "{what}: splats");
     assert_eq!(a.splat_samples, b.splat_samples, "{what}: splat samples");
+    assert_eq!(a.weights, b.weights, "{what}: weights");
 }
 
 /// Each split of `base`'s passes, merged (in reverse order), equals the whole.
@@ -90,6 +91,16 @@ const PHOTONS: [(&str, &str); 3] = [
     ("integer causticphotons", "20000"),
     ("integer gatherrays", "4"),
 ];
+
+/// With a splatting filter the film holds weights too; they travel in
+/// part files and merge like the sums.
+#[test]
+fn splatted_parts_merge_to_the_whole_render() {
+    let mut j = job("path", 6, &[]);
+    j.overrides
+        .param("PixelFilter", "bool splat", "true", "test");
+    merges_to_whole(j, &[&[0..1, 1..6], &[0..3, 3..4, 4..6]]);
+}
 
 #[test]
 fn path_parts_merge_to_the_whole_render() {

@@ -1,5 +1,7 @@
 //! Separable, non-negative pixel filters sampled by inverting a tabulated
-//! 1D CDF. With filter importance sampling every sample has weight one.
+//! 1D CDF. With filter importance sampling every sample has weight one;
+//! a filter that splats (`splat`) instead weighs each sample into every
+//! pixel it reaches (`integrator/splatted.rs`).
 
 use lumis_math::Vec2;
 
@@ -9,6 +11,11 @@ const TABLE: usize = 256;
 pub struct Filter {
     pub name: &'static str,
     pub radius: Vec2,
+    /// Reconstruct by splatting: camera samples uniform in their pixel,
+    /// each added to every pixel within the radius with the filter's
+    /// density there (Mitsuba's and pbrt-v3's reconstruction), instead of
+    /// one sample per pixel at an offset drawn from the filter (pbrt-v4's).
+    pub splat: bool,
     /// CDF of the 1D profile over [-1, 1] (in units of the radius), TABLE + 1 entries.
     cdf: Vec<f32>,
 }
@@ -51,7 +58,12 @@ impl Filter {
         for c in cdf.iter_mut() {
             *c /= total;
         }
-        Filter { name, radius, cdf }
+        Filter {
+            name,
+            radius,
+            splat: false,
+            cdf,
+        }
     }
 
     fn sample_1d(&self, u: f32) -> f32 {
@@ -77,6 +89,14 @@ impl Filter {
         self.pdf_1d(offset.x / self.radius.x) / self.radius.x
             * self.pdf_1d(offset.y / self.radius.y)
             / self.radius.y
+    }
+
+    /// [`Filter::pdf`]'s factor along `x` (else `y`) at offset `d`: the
+    /// density is their product (up to rounding).
+    #[inline]
+    pub fn pdf_axis(&self, x: bool, d: f32) -> f32 {
+        let r = if x { self.radius.x } else { self.radius.y };
+        self.pdf_1d(d / r) / r
     }
 
     /// Density of `sample_1d` at `t` in [-1, 1] (0 outside).

@@ -478,10 +478,17 @@ pub fn drive<P: Pass>(
 
 /// What one pass added besides the pixels.
 #[derive(Default)]
-struct Tally {
+pub(super) struct Tally {
     rays: RayCounts,
     bad: u64,
     first_bad: Option<BadSample>,
+}
+
+impl Tally {
+    /// Counts `o`'s rays as this tally's.
+    pub(super) fn add_rays(&mut self, o: &Tally) {
+        self.rays.add(&o.rays);
+    }
 }
 
 /// The earlier of two first bad samples.
@@ -493,7 +500,8 @@ pub(crate) fn min_bad(a: Option<BadSample>, b: Option<BadSample>) -> Option<BadS
 }
 
 /// Samples `indices` of every pixel, rows in parallel; then the rows'
-/// splats, in row order.
+/// splats, in row order. A filter that splats has a pass of its own
+/// (`splatted.rs`).
 fn render_pass<P: Pass>(
     scene: &Scene,
     pass: &P,
@@ -501,7 +509,9 @@ fn render_pass<P: Pass>(
     film: &mut Film,
     indices: std::ops::Range<u32>,
 ) -> Tally {
-    let cam = &scene.camera;
+    if settings.filter.splat {
+        return super::splatted::render_pass(scene, pass, settings, film, indices);
+    }
     let width = film.width() as usize;
     let rows: Vec<(Tally, Vec<Splat>)> = film
         .pixels
@@ -518,27 +528,12 @@ fn render_pass<P: Pass>(
                     sampler.start_pixel_sample(px, py, s);
                     let off = settings.filter.sample(sampler.get_2d());
                     let p_film = Vec2::new(px as f32 + 0.5, py as f32 + 0.5) + off;
-                    let ray = cam.generate_ray(p_film, sampler.get_2d());
-                    let mut cx = SampleCx {
-                        pixel: (px, py),
-                        index: s,
-                        rays: &mut t.rays,
-                        splats: &mut splats,
-                        filter: &settings.filter,
-                    };
-                    let l = pass.li(ray, &mut sampler, &mut cx);
-                    match accept(l, settings.clamp) {
-                        Some(l) => pixel.add(l),
-                        None => {
-                            // Dropped, counted, and never allowed into the pixel.
-                            t.bad += 1;
-                            let b = BadSample {
-                                sample: s,
-                                y: py,
-                                x: px,
-                            };
-                            t.first_bad = min_bad(t.first_bad, Some(b));
-                        }
+                    let at = (px, py, s);
+                    let (t, sp) = (&mut t, &mut splats);
+                    if let Some(l) =
+                        take_sample(scene, pass, settings, &mut sampler, at, p_film, t, sp)
+                    {
+                        pixel.add(l);
                     }
                 }
             }
@@ -546,19 +541,74 @@ fn render_pass<P: Pass>(
         })
         .collect();
     let mut tally = Tally::default();
+    add_rows(&mut tally, film, rows, settings.clamp);
+    add_pass_splats(pass, settings, film, indices.len() as f32);
+    tally
+}
+
+/// Sample `at = (x, y, index)` through film position `p_film` (raster,
+/// full film), its camera ray drawn from `sampler`'s next pair; its rays
+/// counted and splats kept in the row's `t` and `splats`. Returns its
+/// radiance as the film takes it, or `None` for a dropped sample (not
+/// finite), which is counted and never reaches a pixel.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn take_sample<P: Pass>(
+    scene: &Scene,
+    pass: &P,
+    settings: &RenderSettings,
+    sampler: &mut Sampler,
+    at: (u32, u32, u32),
+    p_film: Vec2,
+    t: &mut Tally,
+    splats: &mut Vec<Splat>,
+) -> Option<Rgb> {
+    let ray = scene.camera.generate_ray(p_film, sampler.get_2d());
+    let mut cx = SampleCx {
+        pixel: (at.0, at.1),
+        index: at.2,
+        rays: &mut t.rays,
+        splats,
+        filter: &settings.filter,
+    };
+    let l = accept(pass.li(ray, sampler, &mut cx), settings.clamp);
+    if l.is_none() {
+        t.bad += 1;
+        let (x, y, sample) = at;
+        t.first_bad = min_bad(t.first_bad, Some(BadSample { sample, y, x }));
+    }
+    l
+}
+
+/// The rows' tallies into `tally` and their splats into the film, in row order.
+pub(super) fn add_rows(
+    tally: &mut Tally,
+    film: &mut Film,
+    rows: Vec<(Tally, Vec<Splat>)>,
+    clamp: Option<f32>,
+) {
     for (t, splats) in rows {
         tally.rays.add(&t.rays);
         tally.bad += t.bad;
         tally.first_bad = min_bad(tally.first_bad, t.first_bad);
         for s in splats {
-            if let Some(l) = accept(s.l, settings.clamp) {
+            if let Some(l) = accept(s.l, clamp) {
                 film.add_splat(s.x, s.y, l);
             }
         }
     }
+}
+
+/// The integrator's own splats of the pass (`Pass::pass_splats`), `n`
+/// samples per pixel's worth.
+pub(super) fn add_pass_splats<P: Pass>(
+    pass: &P,
+    settings: &RenderSettings,
+    film: &mut Film,
+    n: f32,
+) {
     let own = pass.pass_splats();
     if !own.is_empty() {
-        let n = indices.len() as f32;
         let mut splats = Vec::new();
         for &(p, l) in own {
             filter_splats(&settings.filter, p, l * n, &mut splats);
@@ -569,7 +619,6 @@ fn render_pass<P: Pass>(
             }
         }
     }
-    tally
 }
 
 /// The sample as the film takes it: clamped if asked, `None` if not finite.

@@ -23,6 +23,7 @@ pub mod lighttracer;
 pub mod path;
 pub mod photon;
 pub mod run;
+mod splatted;
 pub mod vcm;
 pub mod volpath;
 

@@ -430,6 +430,9 @@ pub fn crop_bounds(res: (u32, u32), c: [f32; 4]) -> PixelBounds {
     }
 }
 
+/// The largest radius (pixels) of a filter that splats.
+const MAX_SPLAT_RADIUS: f32 = 16.0;
+
 fn build_filter(f: &Entity, w: &mut Warnings) -> Result<Filter, Diagnostic> {
     let p = &f.params;
     let radius = |d: f32| -> Result<Vec2, Diagnostic> {
@@ -459,10 +462,27 @@ fn build_filter(f: &Entity, w: &mut Warnings) -> Result<Filter, Diagnostic> {
     if !(filter.radius.x > 0.0 && filter.radius.y > 0.0) {
         return Err(Diagnostic::error(&f.loc, "filter radius must be positive"));
     }
+    let mut filter = filter;
+    filter.splat = p.get_bool("splat", false)?;
+    // A splatted sample is kept for every pixel it reaches until they all
+    // have it (`integrator/splatted.rs`): memory grows with the radius.
+    if filter.splat && filter.radius.max_element() > MAX_SPLAT_RADIUS {
+        let loc = p
+            .loc_of("xradius")
+            .or(p.loc_of("yradius"))
+            .unwrap_or(f.loc.clone());
+        return Err(Diagnostic::error(
+            &loc,
+            format!(
+                "a splatting filter's radius must be at most {MAX_SPLAT_RADIUS} pixels, not {}",
+                filter.radius.max_element()
+            ),
+        ));
+    }
     w.unused(
         p,
         &format!("filter \"{}\"", f.ty),
-        &["xradius", "yradius", "sigma"],
+        &["xradius", "yradius", "sigma", "splat"],
     );
     Ok(filter)
 }

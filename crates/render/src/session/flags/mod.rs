@@ -39,6 +39,8 @@ pub struct RenderFlags {
     pub exposure: f32,
     pub sampler: Option<String>,
     pub clamp: Option<f32>,
+    /// `--filter-splat`: PixelFilter's `splat`.
+    pub filter_splat: Option<bool>,
     /// `bvh` or `embree` (checked when the job is made).
     pub accel: Option<String>,
     /// The integrators' parameters given, with their values as typed; they
@@ -68,6 +70,7 @@ impl Default for RenderFlags {
             exposure: 0.0,
             sampler: None,
             clamp: None,
+            filter_splat: None,
             accel: None,
             params: Vec::new(),
             checkpoint: None,
@@ -117,7 +120,7 @@ impl RenderFlags {
     }
 
     /// The flags that override the scene file, in this order: resolution,
-    /// crop, sampler, integrator, maxdepth, then the integrators'
+    /// crop, sampler, filter, integrator, maxdepth, then the integrators'
     /// parameters in table order.
     fn overrides(&self) -> Overrides {
         let mut o = Overrides::default();
@@ -129,6 +132,14 @@ impl RenderFlags {
         }
         if let Some(s) = &self.sampler {
             o.sampler_from(s, "--sampler");
+        }
+        if let Some(b) = self.filter_splat {
+            o.param(
+                "PixelFilter",
+                "bool splat",
+                &b.to_string(),
+                "--filter-splat",
+            );
         }
         if let Some(i) = &self.integrator {
             o.integrator_from(i, "--integrator");

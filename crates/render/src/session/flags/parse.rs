@@ -25,6 +25,7 @@ const OWN: &[&str] = &[
     "--exposure",
     "--sampler",
     "--clamp",
+    "--filter-splat",
     "--accel",
 ];
 
@@ -48,6 +49,7 @@ impl RenderFlags {
             time: parse(get("--time"), "--time")?,
             threads: parse(get("--threads"), "--threads")?,
             clamp: parse(get("--clamp"), "--clamp")?,
+            filter_splat: parse(get("--filter-splat"), "--filter-splat")?,
             exposure: parse(get("--exposure"), "--exposure")?.unwrap_or(0.0),
             accel: get("--accel").map(String::from),
             output: get("--output").map(PathBuf::from),
@@ -105,10 +107,12 @@ fn collect(
         let value = match (inline, param) {
             (Some(v), _) => v,
             // `--aim-caustics` alone means true.
-            (None, Some(p)) if p.spec.ty == "bool" => match it.peek() {
-                Some(v) if *v == "true" || *v == "false" => it.next().unwrap().clone(),
-                _ => "true".into(),
-            },
+            (None, p) if p.is_some_and(|p| p.spec.ty == "bool") || flag == "--filter-splat" => {
+                match it.peek() {
+                    Some(v) if *v == "true" || *v == "false" => it.next().unwrap().clone(),
+                    _ => "true".into(),
+                }
+            }
             (None, _) => it
                 .next()
                 .ok_or_else(|| format!("bad flags: `{flag}` needs a value"))?
@@ -169,6 +173,7 @@ mod tests {
             "24x16",
             "--crop",
             "0.25,0.75,0,1",
+            "--filter-splat",
             "--integrator",
             "photon",
             "--progressive",
@@ -200,6 +205,7 @@ mod tests {
             seed: 3,
             resolution: Some((24, 16)),
             crop: Some([0.25, 0.75, 0.0, 1.0]),
+            filter_splat: Some(true),
             integrator: Some("photon".into()),
             params: f.params.clone(),
             ..RenderFlags::default()
@@ -229,6 +235,14 @@ mod tests {
         assert!(err(&["--crop", "0,1,0"]).contains("--crop expects x0,x1,y0,y1"));
         assert!(err(&["--spp", "x"]).contains("`--spp x` is not a valid value"));
         assert!(err(&["a.pbrt", "b.pbrt"]).contains("a second scene `b.pbrt`"));
+        // `--filter-splat` takes a value only if it is one.
+        let f = |a: &[&str]| RenderFlags::parse(&args(a)).unwrap();
+        assert_eq!(f(&["--filter-splat", "false"]).filter_splat, Some(false));
+        let g = f(&["--filter-splat", "s.pbrt"]);
+        assert_eq!(
+            (g.filter_splat, g.scene),
+            (Some(true), Some("s.pbrt".into()))
+        );
         // Flags of the CLI that a study run does not give.
         assert!(err(&["--checkpoint", "c"]).contains("unknown flag"));
     }
