@@ -101,7 +101,7 @@ pub(super) fn render_pass<P: Pass>(
             })
             .collect();
         add_rows(&mut tally, film, rows, settings.clamp);
-        let (taken, wxs, wys) = (&taken, &wxs, &wys);
+        let (taken, wxs, wys) = (taken.as_slice(), wxs.as_slice(), wys.as_slice());
         film.weights.resize(film.pixels.len(), 0);
         film.pixels
             .par_chunks_mut(w.max(1))
@@ -111,17 +111,20 @@ pub(super) fn render_pass<P: Pass>(
                 for (col, (pixel, weight)) in pixels.iter_mut().zip(weights).enumerate() {
                     let (mut sum, mut total) = (Rgb::BLACK, 0.0f32);
                     // Window pixel (col, row) is (col + rx, row + ry) of
-                    // `taken`; sample (qx, qy) is `qx - col - rx` columns
-                    // from it, its factor `wx[2 rx - (qx - col)]`.
-                    for qy in row..=row + 2 * ry {
-                        for qx in col..=col + 2 * rx {
-                            let q = qy * ew + qx;
-                            let f = wxs[q * nx + 2 * rx - (qx - col)]
-                                * wys[q * ny + 2 * ry - (qy - row)];
-                            if f > 0.0 {
-                                sum += taken[q] * f;
-                                total += f;
-                            }
+                    // `taken`; the sample `i` columns and `j` rows into the
+                    // block from (col, row) is `i - rx` columns from it:
+                    // its factors are `wx[2 rx - i]` and `wy[2 ry - j]`.
+                    for j in 0..ny {
+                        let q = (row + j) * ew + col;
+                        let (l, wx, wy) = (
+                            &taken[q..q + nx],
+                            &wxs[q * nx..(q + nx) * nx],
+                            &wys[q * ny..(q + nx) * ny],
+                        );
+                        for i in 0..nx {
+                            let f = wx[i * nx + nx - 1 - i] * wy[i * ny + ny - 1 - j];
+                            sum += l[i] * f;
+                            total += f;
                         }
                     }
                     pixel.add(sum);
