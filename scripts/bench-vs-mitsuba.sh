@@ -117,13 +117,16 @@ reference() {
   fi
 }
 
+# run_lumis NAME LABEL [FLAGS]: lumis `path` as row NAME.
 run_lumis() {
-  timed lumis "$LUMIS" render "$SCENE.pbrt" --integrator path --spp "$SPP" --threads "$THREADS" \
-    --seed 1 -q --stats -o "$OUT/lumis.exr"
+  local n=$1 label=$2
+  shift 2
+  timed "$n" "$LUMIS" render "$SCENE.pbrt" --integrator path --spp "$SPP" --threads "$THREADS" \
+    --seed 1 -q --stats "$@" -o "$OUT/$n.exr"
   # the rendering phase of --stats: after parsing and the BVH build, before writing
   local t
-  t=$(sed -n 's/.* rendering \([0-9.]*\) s.*/\1/p' "$OUT/lumis.log")
-  record lumis "{\"label\": \"lumis path\", \"render\": ${t:-null}}"
+  t=$(sed -n 's/.* rendering \([0-9.]*\) s.*/\1/p' "$OUT/$n.log")
+  record "$n" "{\"label\": \"$label\", \"render\": ${t:-null}}"
 }
 
 run_mitsuba() {
@@ -150,7 +153,10 @@ for name in $SCENES; do
   RESULTS=$OUT/results.jsonl
   mkdir -p "$OUT"
   : >"$RESULTS"
-  run_lumis
+  run_lumis lumis "lumis path"
+  # The same samples weighted into every pixel the filter reaches, as
+  # Mitsuba's film does (its reference is still the sampled filter's).
+  run_lumis lumis-splat "lumis path, splat" --filter-splat
   run_mitsuba
   if [ -n "$PBRT" ]; then run_pbrt; fi
   echo
