@@ -198,7 +198,8 @@ def parameters() -> Dict[str, Dict[str, str]]:
     and ``name``, the CLI's ``flag``, the ``value`` it takes and ``help``.
     Besides these, :func:`render` takes ``spp``, ``time``, ``seed``,
     ``threads``, ``integrator``, ``maxdepth``, ``resolution``, ``crop``,
-    ``sampler``, ``clamp``, ``accel``, ``output`` and ``exposure``."""
+    ``sampler``, ``filter_splat``, ``clamp``, ``accel``, ``output`` and
+    ``exposure``."""
     return _lumis.parameters()
 
 
@@ -236,7 +237,8 @@ def render(
       seconds)`` from the calling thread while it waits;
     - ``params``: the CLI's other render options by the same names:
       ``integrator``, ``maxdepth``, ``resolution=(w, h)``,
-      ``crop=(x0, x1, y0, y1)``, ``sampler``, ``clamp``, ``accel``,
+      ``crop=(x0, x1, y0, y1)``, ``sampler``, ``filter_splat`` (True: each
+      sample weighted into every pixel the filter reaches), ``clamp``, ``accel``,
       ``output`` (a path or a list: files to write, as ``-o``),
       ``exposure`` (for PNG outputs), and every integrator parameter of
       :func:`parameters` (``caustic_photons=``, ``caustics="mis"``, ...).

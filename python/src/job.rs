@@ -16,7 +16,14 @@ use std::path::PathBuf;
 const JOB_KEYS: &[&str] = &[
     "spp", "time", "seed", "threads", "clamp", "accel", "output", "exposure",
 ];
-const SCENE_KEYS: &[&str] = &["resolution", "crop", "sampler", "integrator", "maxdepth"];
+const SCENE_KEYS: &[&str] = &[
+    "resolution",
+    "crop",
+    "sampler",
+    "filter_splat",
+    "integrator",
+    "maxdepth",
+];
 
 /// A render job: the scene, parameters layered over the file's, seed,
 /// budget, threads and outputs, as plain data. `to_json()` gives the same
@@ -397,8 +404,8 @@ fn accel(name: &str) -> PyResult<Accel> {
     }
 }
 
-/// The overrides keyword `key` (resolution, crop, sampler, integrator,
-/// maxdepth) makes, as the CLI's flags make them.
+/// The overrides keyword `key` (resolution, crop, sampler, filter_splat,
+/// integrator, maxdepth) makes, as the CLI's flags make them.
 fn scene_override(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<Override>> {
     let mut o = Overrides::default();
     let from = origin(key);
@@ -412,6 +419,10 @@ fn scene_override(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<Override>> {
         }
         "sampler" => {
             o.sampler_from(&v.extract::<String>()?, &from);
+        }
+        "filter_splat" => {
+            let b: bool = v.extract()?;
+            o.param("PixelFilter", "bool splat", &b.to_string(), &from);
         }
         "integrator" => {
             o.integrator_from(&v.extract::<String>()?, &from);

@@ -50,6 +50,18 @@ def test_path_tracing_equals_the_cli_and_scene_file_names_work(cli, scenes, tmp_
     assert np.array_equal(img, ref)
 
 
+def test_a_splatting_filter_equals_the_cli(cli, tmp_path):
+    # The default scene's Gaussian filter, splatted.
+    run_cli(cli, "render", "--resolution", "24x20", "--spp", "2", "--integrator", "path",
+            "--filter-splat", "-q", "-o", "cli.pfm", cwd=tmp_path)
+    ref = read_pfm(tmp_path / "cli.pfm")
+    img = lumis.render(resolution=(24, 20), spp=2, integrator="path", filter_splat=True,
+                       progress=False)
+    assert np.array_equal(img, ref)
+    sampled = lumis.render(resolution=(24, 20), spp=2, integrator="path", progress=False)
+    assert not np.array_equal(img, sampled)
+
+
 def test_a_loaded_scene_renders_again_and_as_a_fresh_load(scenes):
     path = scenes / "test" / "caustic_sphere.pbrt"
     scene = lumis.load(path, integrator="path", resolution=(20, 16), spp=2)
@@ -115,7 +127,7 @@ def test_scene_file_names_of_parameters_are_accepted():
 # The render flags that are keywords of the job rather than integrator
 # parameters, and those that only make sense on a command line.
 JOB_KEYWORDS = {"spp", "time", "threads", "seed", "integrator", "maxdepth", "resolution",
-                "crop", "exposure", "sampler", "clamp", "accel", "output"}
+                "crop", "exposure", "sampler", "filter_splat", "clamp", "accel", "output"}
 # `--passes A..B --partial FILE` is `lumis.render_part(scene, A, B)`,
 # which returns the part's bytes.
 CLI_ONLY = {"help", "quiet", "verbose", "stats", "checkpoint", "checkpoint_every",
