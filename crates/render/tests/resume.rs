@@ -12,7 +12,10 @@ use lumis_render::integrator::{BadSample, RenderSettings};
 use lumis_render::load::{LoadedScene, Overrides, DEFAULT_SCENE};
 
 fn scene(integrator: &str) -> LoadedScene {
-    let mut ov = Overrides::default();
+    scene_with(integrator, Overrides::default())
+}
+
+fn scene_with(integrator: &str, mut ov: Overrides) -> LoadedScene {
     ov.resolution(20, 14)
         .integrator(integrator)
         .integrator_param("integer photons", "20000")
@@ -28,14 +31,18 @@ fn assert_same_bits(a: &Film, b: &Film) {
     }
     assert_eq!(a.splats, b.splats, "splats");
     assert_eq!(a.splat_samples, b.splat_samples);
+    assert_eq!(a.weights, b.weights, "weights");
 }
 
 fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
-    let l = scene(integrator);
-    let s = common::settings(&l, spp, 11, 2);
-    let full = render_until(&l, &s, None, None);
+    resume_of(&scene(integrator), spp, stop);
+}
+
+fn resume_of(l: &LoadedScene, spp: u32, stop: u32) {
+    let s = common::settings(l, spp, 11, 2);
+    let full = render_until(l, &s, None, None);
     assert_eq!(full.spp, spp);
-    let part = render_until(&l, &s, Some(stop), None);
+    let part = render_until(l, &s, Some(stop), None);
     assert!(part.interrupted);
     assert_eq!(part.spp, stop);
     // Through the file format, as `--checkpoint` / `--resume` do.
@@ -48,7 +55,7 @@ fn resume_equals_uninterrupted(integrator: &str, spp: u32, stop: u32) {
     let back = Checkpoint::decode(&ck.encode(), "test").unwrap();
     // Resumed on another thread count: still identical.
     let s1 = RenderSettings { threads: 1, ..s };
-    let resumed = render_until(&l, &s1, None, Some(back.state));
+    let resumed = render_until(l, &s1, None, Some(back.state));
     assert_eq!(resumed.spp, spp);
     assert!(!resumed.interrupted);
     assert_same_bits(&resumed.film, &full.film);
@@ -64,6 +71,17 @@ fn path_resume_is_bit_identical() {
 #[test]
 fn photon_resume_is_bit_identical() {
     resume_equals_uninterrupted("photon", 4, 1);
+}
+
+/// A splatting filter's film (its weights) resumes too, with the photon
+/// pass's own camera splats beside it.
+#[test]
+fn splatted_photon_resume_is_bit_identical() {
+    let mut ov = Overrides::default();
+    ov.param("PixelFilter", "bool splat", "true", "test");
+    let l = scene_with("photon", ov);
+    assert!(l.options.filter.splat);
+    resume_of(&l, 4, 1);
 }
 
 #[test]

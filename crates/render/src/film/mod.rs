@@ -69,7 +69,9 @@ impl Pixel {
         }
     }
 
-    /// The sample mean per channel (0 without samples).
+    /// The sample mean per channel (0 without samples). In a film with
+    /// weights (a splatting filter) the samples are weighted sums and this
+    /// is not the pixel's value: [`Film::mean_image`] is.
     pub fn mean(&self) -> [f64; 3] {
         let n = self.n.max(1) as f64;
         self.sum.map(|s| exact::sum_value(s) / n)
