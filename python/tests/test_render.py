@@ -51,14 +51,15 @@ def test_path_tracing_equals_the_cli_and_scene_file_names_work(cli, scenes, tmp_
 
 
 def test_a_splatting_filter_equals_the_cli(cli, tmp_path):
-    # The default scene's Gaussian filter, splatted.
+    # The default scene's Gaussian filter, splatted (as its file says) or sampled.
     run_cli(cli, "render", "--resolution", "24x20", "--spp", "2", "--integrator", "path",
             "--filter-splat", "-q", "-o", "cli.pfm", cwd=tmp_path)
     ref = read_pfm(tmp_path / "cli.pfm")
     img = lumis.render(resolution=(24, 20), spp=2, integrator="path", filter_splat=True,
                        progress=False)
     assert np.array_equal(img, ref)
-    sampled = lumis.render(resolution=(24, 20), spp=2, integrator="path", progress=False)
+    sampled = lumis.render(resolution=(24, 20), spp=2, integrator="path", filter_splat=False,
+                           progress=False)
     assert not np.array_equal(img, sampled)
 
 

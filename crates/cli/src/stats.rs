@@ -42,7 +42,10 @@ pub fn print(l: &LoadedScene, out: &RenderOutcome, ph: &Phases) {
     }
     let shapes = l.scene.shapes.memory_bytes();
     let bvh = l.scene.geometry_memory_bytes().saturating_sub(shapes);
-    let film = out.film.pixels.len() * std::mem::size_of::<Pixel>();
+    let f = &out.film;
+    let film = f.pixels.len() * std::mem::size_of::<Pixel>()
+        + f.splats.len() * std::mem::size_of::<[i128; 3]>()
+        + f.weights.len() * std::mem::size_of::<i128>();
     let maps = ps.map_or(0, |s| s.memory_bytes);
     eprintln!(
         "  memory       BVH {}, meshes and shapes {}, film {}, photon maps {}",

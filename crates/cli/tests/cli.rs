@@ -515,6 +515,8 @@ fn stats_report_rays_photons_memory_and_phases() {
             "24x16",
             "--spp",
             "3",
+            "--filter-splat",
+            "false",
             "--stats",
             "-q",
             "-o",
@@ -529,6 +531,29 @@ fn stats_report_rays_photons_memory_and_phases() {
     assert_eq!(stat(&e, "rays", "photon"), 0.0);
     // Per pixel: a count and six 128-bit fixed-point sums (16-byte aligned).
     assert_eq!(stat(&e, "memory", "film"), (24 * 16 * 112) as f64 / 1024.0);
+    // The default scene's filter splats (radius 1.5: a sample counts in
+    // the pixels next to its own): its samples cover a border of one pixel
+    // too, and each pixel keeps a weight.
+    let o = lumis(
+        &d,
+        &[
+            "render",
+            "--integrator",
+            "path",
+            "--resolution",
+            "24x16",
+            "--spp",
+            "3",
+            "--stats",
+            "-q",
+            "-o",
+            "t.exr",
+        ],
+    );
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert_eq!(stat(&e, "rays", "camera"), (26 * 18 * 3) as f64, "{e}");
+    assert_eq!(stat(&e, "memory", "film"), (24 * 16 * 128) as f64 / 1024.0);
     assert!(stat(&e, "memory", "BVH") > 0.0);
     for phase in ["parse", "build", "rendering", "writing"] {
         assert!(stat(&e, "time", phase) >= 0.0);

@@ -56,7 +56,11 @@ fn render_clamped(
 #[test]
 #[ignore = "writes the committed reference; run by hand"]
 fn make_reference() {
-    let l = load(DEFAULT_SCENE, &overrides());
+    // With the filter sampled, whatever the scene's says: independent
+    // pixels, whose variances the test adds up per block.
+    let mut ov = overrides();
+    ov.param("PixelFilter", "bool splat", "false", "reference");
+    let l = load(DEFAULT_SCENE, &ov);
     let out = render_clamped(&l, REF_SPP, 12345);
     let cmd =
         "cargo test --release -p lumis-render --test integration -- --ignored default_scene::make_reference";
@@ -83,6 +87,10 @@ fn default_scene_matches_reference() {
     let l = load(DEFAULT_SCENE, &overrides());
     let spp = 1024;
     let out = render_clamped(&l, spp, 99);
+    // The pixels' values: the default scene's filter splats (a pixel's
+    // sums are weighted, its value their ratio to its weights). The
+    // reference was rendered with the filter sampled: the same expectation.
+    let img = out.film.mean_image();
     // The test's variance comes from the reference's per-sample variance scaled to
     // `spp`: at 256 spp the caustic paths' heavy tail makes a render's own variance
     // estimate too small exactly where it matters (no firefly sampled yet).
@@ -100,8 +108,7 @@ fn default_scene_matches_reference() {
                 for y in by * BLOCK..(by + 1) * BLOCK {
                     for x in bx * BLOCK..(bx + 1) * BLOCK {
                         let i = (y * RES + x) as usize;
-                        let p = &out.film.pixels[i];
-                        d += p.mean()[c] - mean.data[3 * i + c] as f64;
+                        d += img[3 * i + c] as f64 - mean.data[3 * i + c] as f64;
                         m += mean.data[3 * i + c] as f64;
                         v += var.data[3 * i + c] as f64 * (1.0 + scale);
                     }

@@ -101,9 +101,16 @@ fn vcm_resume_is_bit_identical() {
     resume_equals_uninterrupted("vcm", 6, 2);
 }
 
+/// The default scene's filter, sampled (`splat` false) or splatting.
+fn filtered(splat: bool) -> LoadedScene {
+    let mut ov = Overrides::default();
+    ov.param("PixelFilter", "bool splat", &splat.to_string(), "test");
+    scene_with("path", ov)
+}
+
 #[test]
 fn injected_nan_is_dropped_counted_and_located() {
-    let l = scene("path");
+    let l = filtered(false);
     let s = RenderSettings {
         inject_nan: Some((5, 3, 1)),
         ..common::settings(&l, 3, 0, 2)
@@ -127,4 +134,28 @@ fn injected_nan_is_dropped_counted_and_located() {
         .iter()
         .enumerate()
         .all(|(i, p)| p.n == 3 || i == 3 * w + 5));
+}
+
+/// Splatting, a dropped sample is black in the pixels it reaches (each
+/// pixel still adds one weighted sum per sample index), counted and
+/// located as with the filter sampled.
+#[test]
+fn injected_nan_is_dropped_counted_and_located_when_splatting() {
+    let l = filtered(true);
+    let s = RenderSettings {
+        inject_nan: Some((5, 3, 1)),
+        ..common::settings(&l, 3, 0, 2)
+    };
+    let out = render_until(&l, &s, None, None);
+    assert_eq!(out.bad_samples, 1);
+    assert_eq!(
+        out.first_bad,
+        Some(BadSample {
+            x: 5,
+            y: 3,
+            sample: 1
+        })
+    );
+    assert!(out.film.mean_image().iter().all(|v| v.is_finite()));
+    assert!(out.film.pixels.iter().all(|p| p.n == 3));
 }
