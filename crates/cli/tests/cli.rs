@@ -502,29 +502,22 @@ fn stat(text: &str, line: &str, label: &str) -> f64 {
         .unwrap_or_else(|_| panic!("bad number after {label} in {l}"))
 }
 
+/// `lumis render --integrator path --resolution 24x16 --spp 3 --stats`
+/// with `extra` flags, in `d`: its stderr.
+fn path_stats(d: &std::path::Path, extra: &[&str]) -> String {
+    let mut args = vec!["render", "--integrator", "path", "--resolution", "24x16"];
+    args.extend(["--spp", "3", "--stats", "-q", "-o", "s.exr"]);
+    args.extend(extra);
+    let o = lumis(d, &args);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    e
+}
+
 #[test]
 fn stats_report_rays_photons_memory_and_phases() {
     let d = temp_dir("cli", "stats");
-    let o = lumis(
-        &d,
-        &[
-            "render",
-            "--integrator",
-            "path",
-            "--resolution",
-            "24x16",
-            "--spp",
-            "3",
-            "--filter-splat",
-            "false",
-            "--stats",
-            "-q",
-            "-o",
-            "s.exr",
-        ],
-    );
-    let e = stderr(&o);
-    assert!(o.status.success(), "{e}");
+    let e = path_stats(&d, &["--filter-splat", "false"]);
     // One camera ray per sample; light sampling traces shadow rays.
     assert_eq!(stat(&e, "rays", "camera"), (24 * 16 * 3) as f64, "{e}");
     assert!(stat(&e, "rays", "shadow") > 0.0 && stat(&e, "rays", "indirect") > 0.0);
@@ -534,24 +527,7 @@ fn stats_report_rays_photons_memory_and_phases() {
     // The default scene's filter splats (radius 1.5: a sample counts in
     // the pixels next to its own): its samples cover a border of one pixel
     // too, and each pixel keeps a weight.
-    let o = lumis(
-        &d,
-        &[
-            "render",
-            "--integrator",
-            "path",
-            "--resolution",
-            "24x16",
-            "--spp",
-            "3",
-            "--stats",
-            "-q",
-            "-o",
-            "t.exr",
-        ],
-    );
-    let e = stderr(&o);
-    assert!(o.status.success(), "{e}");
+    let e = path_stats(&d, &[]);
     assert_eq!(stat(&e, "rays", "camera"), (26 * 18 * 3) as f64, "{e}");
     assert_eq!(stat(&e, "memory", "film"), (24 * 16 * 128) as f64 / 1024.0);
     assert!(stat(&e, "memory", "BVH") > 0.0);

@@ -8,7 +8,7 @@ use crate::common;
 use common::{load, render_until};
 use lumis_render::checkpoint::Checkpoint;
 use lumis_render::film::Film;
-use lumis_render::integrator::{BadSample, RenderSettings};
+use lumis_render::integrator::{BadSample, RenderOutcome, RenderSettings};
 use lumis_render::load::{LoadedScene, Overrides, DEFAULT_SCENE};
 
 fn scene(integrator: &str) -> LoadedScene {
@@ -101,33 +101,31 @@ fn vcm_resume_is_bit_identical() {
     resume_equals_uninterrupted("vcm", 6, 2);
 }
 
-/// The default scene's filter, sampled (`splat` false) or splatting.
-fn filtered(splat: bool) -> LoadedScene {
+/// The default scene with `path`, its filter sampled (`splat` false) or
+/// splatting, rendered at 3 spp with sample 1 of pixel (5, 3) made a NaN:
+/// the NaN is dropped, counted and located, and the image finite.
+fn with_a_nan(splat: bool) -> RenderOutcome {
     let mut ov = Overrides::default();
     ov.param("PixelFilter", "bool splat", &splat.to_string(), "test");
-    scene_with("path", ov)
-}
-
-#[test]
-fn injected_nan_is_dropped_counted_and_located() {
-    let l = filtered(false);
+    let l = scene_with("path", ov);
     let s = RenderSettings {
         inject_nan: Some((5, 3, 1)),
         ..common::settings(&l, 3, 0, 2)
     };
     let out = render_until(&l, &s, None, None);
     assert_eq!(out.bad_samples, 1);
-    assert_eq!(
-        out.first_bad,
-        Some(BadSample {
-            x: 5,
-            y: 3,
-            sample: 1
-        })
-    );
+    let (x, y, sample) = (5, 3, 1);
+    assert_eq!(out.first_bad, Some(BadSample { x, y, sample }));
+    assert!(out.film.mean_image().iter().all(|v| v.is_finite()));
+    out
+}
+
+#[test]
+fn injected_nan_is_dropped_counted_and_located() {
+    let out = with_a_nan(false);
+    // Its pixel has one sample fewer.
     let w = out.film.width() as usize;
     assert_eq!(out.film.pixels[3 * w + 5].n, 2);
-    assert!(out.film.mean_image().iter().all(|v| v.is_finite()));
     assert!(out
         .film
         .pixels
@@ -137,25 +135,9 @@ fn injected_nan_is_dropped_counted_and_located() {
 }
 
 /// Splatting, a dropped sample is black in the pixels it reaches (each
-/// pixel still adds one weighted sum per sample index), counted and
-/// located as with the filter sampled.
+/// pixel still adds one weighted sum per sample index).
 #[test]
 fn injected_nan_is_dropped_counted_and_located_when_splatting() {
-    let l = filtered(true);
-    let s = RenderSettings {
-        inject_nan: Some((5, 3, 1)),
-        ..common::settings(&l, 3, 0, 2)
-    };
-    let out = render_until(&l, &s, None, None);
-    assert_eq!(out.bad_samples, 1);
-    assert_eq!(
-        out.first_bad,
-        Some(BadSample {
-            x: 5,
-            y: 3,
-            sample: 1
-        })
-    );
-    assert!(out.film.mean_image().iter().all(|v| v.is_finite()));
+    let out = with_a_nan(true);
     assert!(out.film.pixels.iter().all(|p| p.n == 3));
 }
