@@ -17,7 +17,8 @@
 //! reach are sampled too, as Mitsuba's `sample_border` does, so the edge
 //! pixels' filter is whole: their samples count only in the window's pixels
 //! (their light splats and bad samples are not the window's; their rays
-//! are counted). They are the samples a larger window would take there, so
+//! are counted; beyond the film, the integrator sees them as the nearest
+//! film pixel's). They are the samples a larger window would take there, so
 //! a crop's pixels are those of the whole film, bit for bit.
 //!
 //! Per sample index, the rows are traced in parallel into a buffer of one
@@ -46,6 +47,11 @@ pub(super) fn render_pass<P: Pass>(
     let b = settings.crop;
     let (w, h) = (b.width() as usize, b.height() as usize);
     let (rx, ry) = (reach(f.radius.x), reach(f.radius.y));
+    // The last film pixel's coordinates.
+    let (fw, fh) = (
+        film.full_resolution.0 as i32 - 1,
+        film.full_resolution.1 as i32 - 1,
+    );
     // The window and a border of the filter's reach around it.
     let (ew, eh) = (w + 2 * rx, h + 2 * ry);
     // Per pixel of the current index: its sample's radiance, and the
@@ -76,8 +82,11 @@ pub(super) fn render_pass<P: Pass>(
                     .enumerate()
                 {
                     let px = (b.x0 as i64 + ec as i64 - rx as i64) as i32;
-                    let at = (px as u32, py as u32, s);
-                    sampler.start_pixel_sample(at.0, at.1, s);
+                    sampler.start_pixel_sample(px as u32, py as u32, s);
+                    // The integrator sees a sample beyond the film as its
+                    // nearest film pixel's (whose per-pixel state, such as
+                    // `vcm`'s light subpaths, it shares).
+                    let at = (px.clamp(0, fw) as u32, py.clamp(0, fh) as u32, s);
                     let u = sampler.get_2d();
                     let p_film = Vec2::new(px as f32 + u.x, py as f32 + u.y);
                     let inside = row_inside && (rx..rx + w).contains(&ec);
