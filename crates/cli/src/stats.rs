@@ -1,7 +1,6 @@
 //! `--stats`: what pbrt users expect at the end of a render — rays by kind,
 //! photons stored per map, memory by category, time by phase.
 
-use lumis_render::film::Pixel;
 use lumis_render::integrator::{RenderOutcome, RenderSettings};
 use lumis_render::load::LoadedScene;
 use std::sync::atomic::Ordering;
@@ -42,10 +41,7 @@ pub fn print(l: &LoadedScene, out: &RenderOutcome, ph: &Phases) {
     }
     let shapes = l.scene.shapes.memory_bytes();
     let bvh = l.scene.geometry_memory_bytes().saturating_sub(shapes);
-    let f = &out.film;
-    let film = f.pixels.len() * std::mem::size_of::<Pixel>()
-        + f.splats.len() * std::mem::size_of::<[i128; 3]>()
-        + f.weights.len() * std::mem::size_of::<i128>();
+    let film = out.film.memory_bytes();
     let maps = ps.map_or(0, |s| s.memory_bytes);
     eprintln!(
         "  memory       BVH {}, meshes and shapes {}, film {}, photon maps {}",

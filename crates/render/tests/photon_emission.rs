@@ -402,6 +402,25 @@ const NEAR_LIGHTS: &str = "Film \"rgb\" \"integer xresolution\" [ 4 ] \"integer 
     AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 2 1 1 ] \"bool twosided\" true\nShape \"trianglemesh\" \"point3 P\" [ -1 -1 0.1  1.5 -1 0.3  0 1.5 0.9 ] \"integer indices\" [ 0 1 2 ]\nAttributeEnd\n";
 const FLOOR: &str = "Material \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [ -9 -9 0  9 -9 0  9 9 0  -9 9 0 ] \"integer indices\" [ 0 1 2 0 2 3 ]\n";
 
+/// The point and direction numbers of emission `i`: a quarter of them
+/// (`i % 4 == 1`) with the direction's `x` (or `y`) within 1e-7..1e-4 of
+/// 0 or 1, so within as little of the horizon.
+fn emission_numbers(
+    rng: &mut lumis_math::rng::Pcg32,
+    i: usize,
+    y: bool,
+) -> (lumis_math::Vec2, lumis_math::Vec2) {
+    let mut u = || rng.next_f32();
+    let u1 = lumis_math::Vec2::new(u(), u());
+    let mut u2 = lumis_math::Vec2::new(u(), u());
+    if i % 4 == 1 {
+        let edge = 10f32.powf(-7.0 + 3.0 * u());
+        let v = if u() < 0.5 { edge } else { 1.0 - edge };
+        *(if y { &mut u2.y } else { &mut u2.x }) = v;
+    }
+    (u1, u2)
+}
+
 /// Area lights drop a caustic photon before finishing its sample only when
 /// no direction at its polar angle can meet a shape that can be specular
 /// (`Light::sample_le_culled` with `Targets::starts`): every sample the
@@ -411,7 +430,6 @@ const FLOOR: &str = "Material \"diffuse\"\nShape \"trianglemesh\" \"point3 P\" [
 #[test]
 fn early_dropped_emissions_are_only_those_the_exact_test_refuses() {
     use lumis_math::rng::Pcg32;
-    use lumis_math::Vec2;
     let text = format!("{NEAR_LIGHTS}\
         AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 2 1 ]\nTranslate 0.9 0.1 1.1\nShape \"sphere\" \"float radius\" [ 0.15 ]\nAttributeEnd\n{FLOOR}");
     let l = load(&text, &Default::default());
@@ -426,14 +444,7 @@ fn early_dropped_emissions_are_only_those_the_exact_test_refuses() {
     let (mut refused, mut early, mut kept, n) = (0, 0, 0, 400_000);
     for i in 0..n {
         let light = &scene.lights[i % scene.lights.len()];
-        let mut u = || rng.next_f32();
-        let u1 = Vec2::new(u(), u());
-        // A quarter of the directions within 1e-7..1e-4 of the horizon.
-        let mut u2 = Vec2::new(u(), u());
-        if i % 4 == 1 {
-            let edge = 10f32.powf(-7.0 + 3.0 * u());
-            u2.x = if u() < 0.5 { edge } else { 1.0 - edge };
-        }
+        let (u1, u2) = emission_numbers(&mut rng, i, false);
         let full = light.sample_le(&scene.shapes, u1, u2);
         let culled = light.sample_le_culled(&scene.shapes, u1, u2, Some(&starts));
         let Some(full) = full else {
@@ -468,7 +479,6 @@ fn windows_refuse_only_rays_that_miss_every_start() {
     use lumis_math::rng::Pcg32;
     use lumis_math::safe_sqrt;
     use lumis_math::sampling::disk_concentric_radius;
-    use lumis_math::Vec2;
     use lumis_render::integrator::photon::polar::PolarWindows;
     use lumis_render::light::{EmitCull, Light};
     let text = format!("{NEAR_LIGHTS}\
@@ -484,13 +494,7 @@ fn windows_refuse_only_rays_that_miss_every_start() {
     for i in 0..400_000 {
         let li = i % scene.lights.len();
         let light = &scene.lights[li];
-        let mut u = || rng.next_f32();
-        let u1 = Vec2::new(u(), u());
-        let mut u2 = Vec2::new(u(), u());
-        if i % 4 == 1 {
-            let edge = 10f32.powf(-7.0 + 3.0 * u());
-            u2.y = if u() < 0.5 { edge } else { 1.0 - edge };
-        }
+        let (u1, u2) = emission_numbers(&mut rng, i, true);
         // The side and polar angle `sample_le_culled` gives the windows.
         let Light::Area(area) = light else {
             panic!("area lights only")

@@ -192,6 +192,13 @@ impl Film {
         Ok(())
     }
 
+    /// Bytes of the pixels' sums, the light splats and the weights.
+    pub fn memory_bytes(&self) -> usize {
+        self.pixels.len() * std::mem::size_of::<Pixel>()
+            + self.splats.len() * std::mem::size_of::<[i128; 3]>()
+            + self.weights.len() * std::mem::size_of::<i128>()
+    }
+
     pub fn width(&self) -> u32 {
         self.bounds.width()
     }

@@ -62,6 +62,7 @@ pub(super) fn render_pass<P: Pass>(
     let mut wxs = vec![0.0f32; ew * eh * nx];
     let mut wys = vec![0.0f32; ew * eh * ny];
     let mut tally = Tally::default();
+    film.weights.resize(film.pixels.len(), 0);
     for s in indices.clone() {
         let rows: Vec<(Tally, Vec<Splat>)> = taken
             .par_chunks_mut(ew.max(1))
@@ -111,7 +112,6 @@ pub(super) fn render_pass<P: Pass>(
             .collect();
         add_rows(&mut tally, film, rows, settings.clamp);
         let (taken, wxs, wys) = (taken.as_slice(), wxs.as_slice(), wys.as_slice());
-        film.weights.resize(film.pixels.len(), 0);
         film.pixels
             .par_chunks_mut(w.max(1))
             .zip(film.weights.par_chunks_mut(w.max(1)))

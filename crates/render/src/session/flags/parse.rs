@@ -11,6 +11,9 @@ use std::path::PathBuf;
 /// The flags of `lumis render` that take no value here.
 const IGNORED: &[&str] = &["-q", "--quiet", "-v", "--verbose", "--stats"];
 
+/// The flags of [`OWN`] that take `true` or `false`, or nothing for true.
+const OWN_BOOLS: &[&str] = &["--filter-splat"];
+
 /// The flags that are the job's fields or scene overrides.
 const OWN: &[&str] = &[
     "--output",
@@ -107,7 +110,9 @@ fn collect(
         let value = match (inline, param) {
             (Some(v), _) => v,
             // `--aim-caustics` alone means true.
-            (None, p) if p.is_some_and(|p| p.spec.ty == "bool") || flag == "--filter-splat" => {
+            (None, p)
+                if p.is_some_and(|p| p.spec.ty == "bool") || OWN_BOOLS.contains(&flag.as_str()) =>
+            {
                 match it.peek() {
                     Some(v) if *v == "true" || *v == "false" => it.next().unwrap().clone(),
                     _ => "true".into(),
