@@ -108,6 +108,9 @@ fn matches_tungsten(
     let (rx, ry) = res;
     let mut ov = ov;
     ov.resolution(res.0, res.1);
+    // One pixel per sample: the block noise below adds pixels' own
+    // variances as independent, which a splatting filter's are not.
+    ov.param("PixelFilter", "bool splat", "false", "test");
     let l = load_path(scene, &ov).unwrap_or_else(|e| panic!("{e}"));
     assert!(
         l.warnings

@@ -1,4 +1,5 @@
-//! A splatting pixel filter (`PixelFilter ... "bool splat" true`): each
+//! A splatting pixel filter (the default for filters wider than a pixel;
+//! `PixelFilter ... "bool splat" false` samples the filter instead): each
 //! sample weighted into every pixel the filter reaches. A constant image
 //! comes out exact; thread counts and crop windows do not change a pixel's
 //! bits (the window's border is sampled as a larger window would); and the
@@ -160,6 +161,42 @@ fn a_splatting_filter_wider_than_its_limit_is_refused_where_given() {
     // Without splatting the same radius is fine.
     let plain = text.replace(" \"bool splat\" true", "");
     load(&plain, &Overrides::default());
+}
+
+#[test]
+fn filters_wider_than_a_pixel_splat_unless_their_file_says_not() {
+    let splats = |filter: &str, ov: &Overrides| -> bool {
+        let text = format!(
+            "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n\
+             {filter}\nCamera \"perspective\"\nWorldBegin\n"
+        );
+        load(&text, ov).options.filter.splat
+    };
+    let none = Overrides::default();
+    // pbrt-v4's default filter (a Gaussian of radius 1.5) and the others.
+    assert!(splats("", &none));
+    assert!(splats("PixelFilter \"gaussian\"", &none));
+    assert!(splats(
+        "PixelFilter \"triangle\" \"float xradius\" [ 1 ]",
+        &none
+    ));
+    assert!(splats("PixelFilter \"box\" \"float xradius\" [ 1 ]", &none));
+    // A box of one pixel gives the same image either way: sampled.
+    assert!(!splats("PixelFilter \"box\"", &none));
+    // Wider than a splat may reach: sampled, not refused.
+    assert!(!splats(
+        "PixelFilter \"gaussian\" \"float xradius\" [ 40 ]",
+        &none
+    ));
+    // The file's word, and the command line's over it.
+    assert!(!splats(
+        "PixelFilter \"gaussian\" \"bool splat\" false",
+        &none
+    ));
+    let mut sampled = Overrides::default();
+    sampled.param("PixelFilter", "bool splat", "false", "--filter-splat");
+    assert!(!splats("", &sampled));
+    assert!(!splats("PixelFilter \"triangle\"", &sampled));
 }
 
 #[test]

@@ -68,7 +68,7 @@ fn shared_scenes_load_and_render_tiny() {
         let l = load_path(&path, &ov).unwrap_or_else(|e| panic!("{rel}: {e}"));
         let out = render_loaded(&l, 1, 0, 0);
         assert_eq!(out.bad_samples, 0, "{rel}: NaN/inf samples");
-        let (mean, _) = mean_and_se(&out.film, None);
+        let mean = image_mean(&out.film, None);
         eprintln!(
             "{rel}: {} warnings, {} lights, mean {mean:.4}",
             l.warnings.len(),

@@ -198,7 +198,11 @@ pub fn build_options(
     }
 
     let filter = match &ov.apply("PixelFilter", desc.filter.as_ref(), "gaussian")? {
-        None => Filter::gaussian(Vec2::splat(1.5), 0.5),
+        None => {
+            let mut f = Filter::gaussian(Vec2::splat(1.5), 0.5);
+            f.splat = splats_by_default(&f);
+            f
+        }
         Some(f) => build_filter(f, w)?,
     };
 
@@ -433,6 +437,14 @@ pub fn crop_bounds(res: (u32, u32), c: [f32; 4]) -> PixelBounds {
 /// The largest radius (pixels) of a filter that splats.
 const MAX_SPLAT_RADIUS: f32 = 16.0;
 
+/// Whether a filter splats when its file does not say: when it reaches
+/// past its own pixel (a box of radius 1/2 gives the same image either way)
+/// and no further than a splat may.
+fn splats_by_default(f: &Filter) -> bool {
+    let r = f.radius.max_element();
+    r > 0.5 && r <= MAX_SPLAT_RADIUS
+}
+
 fn build_filter(f: &Entity, w: &mut Warnings) -> Result<Filter, Diagnostic> {
     let p = &f.params;
     let radius = |d: f32| -> Result<Vec2, Diagnostic> {
@@ -463,7 +475,7 @@ fn build_filter(f: &Entity, w: &mut Warnings) -> Result<Filter, Diagnostic> {
         return Err(Diagnostic::error(&f.loc, "filter radius must be positive"));
     }
     let mut filter = filter;
-    filter.splat = p.get_bool("splat", false)?;
+    filter.splat = p.get_bool("splat", splats_by_default(&filter))?;
     // A splatted sample is kept for every pixel it reaches until they all
     // have it (`integrator/splatted.rs`): memory grows with the radius.
     if filter.splat && filter.radius.max_element() > MAX_SPLAT_RADIUS {

@@ -105,6 +105,7 @@ pub fn sample_mean_and_se(vals: &[f64]) -> (f64, f64) {
 /// Mean over all pixels and channels, and its standard error estimated from
 /// the spread of per-pixel means (pixels are independent estimates).
 pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
+    assert_unsplatted(film);
     let vals: Vec<f64> = image_means(film)
         .into_iter()
         .map(|m| match channel {
@@ -113,6 +114,31 @@ pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
         })
         .collect();
     sample_mean_and_se(&vals)
+}
+
+/// The standard errors above take pixels as independent estimates, which
+/// a splatting filter's are not (neighbours share samples), and read a
+/// pixel's variance as its samples' (a splatted pixel's samples are
+/// weighted sums over its weight).
+fn assert_unsplatted(film: &Film) {
+    assert!(
+        film.weights.is_empty(),
+        "this statistic needs the filter sampled: `PixelFilter ... \"bool splat\" false` (`--filter-splat false`)"
+    );
+}
+
+/// Mean over all pixels (of `channel`, or of the channel average), of any
+/// film, splatted or not.
+pub fn image_mean(film: &Film, channel: Option<usize>) -> f64 {
+    let means = image_means(film);
+    let sum: f64 = means
+        .iter()
+        .map(|m| match channel {
+            Some(c) => m[c],
+            None => m.iter().sum::<f64>() / 3.0,
+        })
+        .sum();
+    sum / means.len() as f64
 }
 
 /// Each pixel's estimate: its samples' mean plus its splats (light paths
@@ -129,6 +155,7 @@ pub fn image_means(film: &Film) -> Vec<[f64; 3]> {
 /// means: the square of its standard error. Splats count in the mean but
 /// not in the variance (the film keeps no spread of them).
 pub fn region_mean_and_var(film: &Film, channel: Option<usize>) -> (f64, f64) {
+    assert_unsplatted(film);
     let n = film.pixels.len() as f64;
     let (mut sum, mut var) = (0.0, 0.0);
     for (p, mean) in film.pixels.iter().zip(image_means(film)) {
