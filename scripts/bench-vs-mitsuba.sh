@@ -110,7 +110,7 @@ reference() {
     local t0 t1
     t0=$(now)
     "$LUMIS" render "$BENCH/scenes/$name.pbrt" --integrator path --spp "$REF_SPP" \
-      --threads "$THREADS" --seed 99 -q -o "$REF.tmp.exr"
+      --filter-splat false --threads "$THREADS" --seed 99 -q -o "$REF.tmp.exr"
     t1=$(now)
     mv "$REF.tmp.exr" "$REF"
     echo "  took $(secs "$t0" "$t1") s"
@@ -153,10 +153,11 @@ for name in $SCENES; do
   RESULTS=$OUT/results.jsonl
   mkdir -p "$OUT"
   : >"$RESULTS"
+  # lumis' default film weights each sample into every pixel the filter
+  # reaches, as Mitsuba's does; the second row samples the filter instead
+  # (pbrt-v4's film, one pixel per sample). The reference samples it.
   run_lumis lumis "lumis path"
-  # The same samples weighted into every pixel the filter reaches, as
-  # Mitsuba's film does (its reference is still the sampled filter's).
-  run_lumis lumis-splat "lumis path, splat" --filter-splat
+  run_lumis lumis-fis "lumis path, filter sampled" --filter-splat false
   run_mitsuba
   if [ -n "$PBRT" ]; then run_pbrt; fi
   echo

@@ -237,8 +237,10 @@ def render(
       seconds)`` from the calling thread while it waits;
     - ``params``: the CLI's other render options by the same names:
       ``integrator``, ``maxdepth``, ``resolution=(w, h)``,
-      ``crop=(x0, x1, y0, y1)``, ``sampler``, ``filter_splat`` (True: each
-      sample weighted into every pixel the filter reaches), ``clamp``, ``accel``,
+      ``crop=(x0, x1, y0, y1)``, ``sampler``, ``filter_splat`` (True, the
+      default for filters wider than a pixel: each sample weighted into
+      every pixel the filter reaches; False: the filter sampled, one pixel
+      per sample, as pbrt-v4), ``clamp``, ``accel``,
       ``output`` (a path or a list: files to write, as ``-o``),
       ``exposure`` (for PNG outputs), and every integrator parameter of
       :func:`parameters` (``caustic_photons=``, ``caustics="mis"``, ...).
