@@ -5,13 +5,19 @@
 use super::mem::prefetch_lines;
 use super::tri4::{PacketRay, TriPackets, PADDING};
 use super::{Bvh, PrimInfo};
+use crate::geometry::triangle::{corner_indices, triangle_geometry_at, triangle_point_at};
 use crate::geometry::{Aabb, Prim, Ray, Shapes, SurfaceGeom};
-use lumis_math::Vec2;
+use lumis_math::{Vec2, Vec3};
 
 #[derive(Clone, Debug, Default)]
 pub struct PrimBvh {
     /// Primitives in BVH leaf order.
     pub prims: Vec<PrimInfo>,
+    /// A triangle's corners' vertex indices, by its index in `prims`
+    /// (zeros for the others): a hit's geometry reads them from here, in
+    /// leaf order and prefetched with the hit's record, rather than from
+    /// its mesh's index list, a second dependent cache miss.
+    corners: Vec<[u32; 3]>,
     /// The leaves' slots in packets of four: the triangles' vertices, and
     /// each lane's index into `prims`.
     packets: TriPackets,
@@ -40,15 +46,23 @@ impl PrimBvh {
             next += 1;
             (next - 1, shapes.triangle_vertices(prims[i as usize].prim))
         });
-        let prims = bvh
+        let prims: Vec<PrimInfo> = bvh
             .order
             .iter()
             .filter(|&&i| i != PADDING)
             .map(|&i| prims[i as usize])
             .collect();
+        let corners = prims
+            .iter()
+            .map(|p| match p.prim {
+                Prim::Triangle { mesh, tri } => corner_indices(&shapes.meshes[mesh as usize], tri),
+                _ => [0; 3],
+            })
+            .collect();
         bvh.order = Vec::new();
         PrimBvh {
             prims,
+            corners,
             packets,
             bvh,
         }
@@ -66,6 +80,7 @@ impl PrimBvh {
     pub fn memory_bytes(&self) -> usize {
         self.bvh.memory_bytes()
             + self.prims.len() * std::mem::size_of::<PrimInfo>()
+            + self.corners.len() * std::mem::size_of::<[u32; 3]>()
             + self.packets.memory_bytes()
     }
 
@@ -90,6 +105,7 @@ impl PrimBvh {
                 // The hit's record is read next (material, light, geometry):
                 // start loading it while the traversal finishes.
                 prefetch_lines::<1>(self.prims.as_ptr().wrapping_add(id as usize) as *const u8);
+                prefetch_lines::<1>(self.corners.as_ptr().wrapping_add(id as usize) as *const u8);
                 uv = b;
                 Some((t, id))
             },
@@ -116,6 +132,75 @@ impl PrimBvh {
 
     /// Surface geometry of a hit, in this level's space.
     pub fn geometry(&self, shapes: &Shapes, h: &LevelHit, ray: &Ray) -> SurfaceGeom {
-        shapes.geometry(self.prims[h.slot as usize].prim, ray, h.t, h.uv)
+        match self.prims[h.slot as usize].prim {
+            Prim::Triangle { mesh, .. } => triangle_geometry_at(
+                &shapes.meshes[mesh as usize],
+                self.corners[h.slot as usize],
+                h.uv.x,
+                h.uv.y,
+            ),
+            p => shapes.geometry(p, ray, h.t, h.uv),
+        }
+    }
+
+    /// A hit's point and geometric normal, as [`PrimBvh::geometry`] gives
+    /// them, for triangles and spheres ([`Shapes::point_normal`]).
+    #[inline]
+    pub fn point_normal(&self, shapes: &Shapes, h: &LevelHit, ray: &Ray) -> Option<(Vec3, Vec3)> {
+        match self.prims[h.slot as usize].prim {
+            Prim::Triangle { mesh, .. } => Some(triangle_point_at(
+                &shapes.meshes[mesh as usize],
+                self.corners[h.slot as usize],
+                h.uv.x,
+                h.uv.y,
+            )),
+            p => shapes.point_normal(p, ray, h.t, h.uv),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::bench::bumpy_sphere;
+    use crate::accel::NO_LIGHT;
+    use lumis_math::Pcg32;
+
+    #[test]
+    fn hits_have_their_meshs_geometry_bit_for_bit() {
+        // Vertex normals, so the shading normal reads the corners too.
+        let mut mesh = bumpy_sphere(2000, 3);
+        let normals = mesh.positions.iter().map(|p| p.normalize()).collect();
+        mesh.normals = Some(normals);
+        let n = mesh.indices.len() as u32 / 3;
+        let shapes = Shapes {
+            meshes: vec![mesh],
+            ..Default::default()
+        };
+        let prims = (0..n)
+            .map(|tri| PrimInfo {
+                prim: Prim::Triangle { mesh: 0, tri },
+                material: 0,
+                light: NO_LIGHT,
+            })
+            .collect();
+        let level = PrimBvh::build(&shapes, prims);
+        let mut rng = Pcg32::new(5, 0);
+        let mut hits = 0;
+        for _ in 0..500 {
+            let o = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 6.0 - 3.0;
+            let ray = Ray::new(o, -o.normalize());
+            let Some(h) = level.closest(&shapes, &ray) else {
+                continue;
+            };
+            hits += 1;
+            let prim = level.prims[h.slot as usize].prim;
+            let want = shapes.geometry(prim, &ray, h.t, h.uv);
+            let got = level.geometry(&shapes, &h, &ray);
+            assert_eq!(format!("{got:?}"), format!("{want:?}"));
+            let pn = level.point_normal(&shapes, &h, &ray).unwrap();
+            assert_eq!(pn, shapes.point_normal(prim, &ray, h.t, h.uv).unwrap());
+        }
+        assert!(hits > 400, "{hits} hits");
     }
 }

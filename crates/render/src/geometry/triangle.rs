@@ -104,7 +104,25 @@ pub fn watertight_tail(u: f32, vv: f32, w: f32, z: [f32; 3], tmax: f32) -> Optio
 
 /// Surface geometry at barycentrics (b1, b2) of triangle `tri`.
 pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> SurfaceGeom {
-    let (idx, [p0, p1, p2], b0) = corners(mesh, tri, b1, b2);
+    triangle_geometry_at(mesh, corner_indices(mesh, tri), b1, b2)
+}
+
+/// The vertex indices of triangle `tri`'s corners.
+#[inline]
+pub fn corner_indices(mesh: &TriangleMesh, tri: u32) -> [u32; 3] {
+    let i = 3 * tri as usize;
+    [mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]]
+}
+
+/// [`triangle_geometry`] of the triangle whose corners are vertices
+/// `corners` (its [`corner_indices`]).
+pub fn triangle_geometry_at(
+    mesh: &TriangleMesh,
+    corners: [u32; 3],
+    b1: f32,
+    b2: f32,
+) -> SurfaceGeom {
+    let (idx, [p0, p1, p2], b0) = corner_points(mesh, corners, b1, b2);
     let p = b0 * p0 + b1 * p1 + b2 * p2;
     let ng = (p0 - p2).cross(p1 - p2).normalize_or_zero();
     let (uv0, uv1, uv2) = match &mesh.uvs {
@@ -144,7 +162,12 @@ pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> Sur
 /// geometric normal, as [`triangle_geometry`] gives them (area sampling
 /// needs no more).
 pub fn triangle_point(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> (Vec3, Vec3) {
-    let (idx, [p0, p1, p2], b0) = corners(mesh, tri, b1, b2);
+    triangle_point_at(mesh, corner_indices(mesh, tri), b1, b2)
+}
+
+/// [`triangle_point`] of the triangle whose corners are vertices `corners`.
+pub fn triangle_point_at(mesh: &TriangleMesh, corners: [u32; 3], b1: f32, b2: f32) -> (Vec3, Vec3) {
+    let (idx, [p0, p1, p2], b0) = corner_points(mesh, corners, b1, b2);
     let p = barycentric_point([p0, p1, p2], b1, b2);
     let ng = (p0 - p2).cross(p1 - p2).normalize_or_zero();
     (p, oriented_normals(mesh, idx, [b0, b1, b2], ng).0)
@@ -158,17 +181,17 @@ pub fn barycentric_point([p0, p1, p2]: [Vec3; 3], b1: f32, b2: f32) -> Vec3 {
     b0 * p0 + b1 * p1 + b2 * p2
 }
 
-/// Triangle `tri`'s vertex indices and positions, and the barycentric
+/// The corners' vertex indices and positions, and the barycentric
 /// `b0 = 1 - b1 - b2`.
 #[inline]
-fn corners(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> ([usize; 3], [Vec3; 3], f32) {
-    let i = 3 * tri as usize;
-    let idx = [
-        mesh.indices[i] as usize,
-        mesh.indices[i + 1] as usize,
-        mesh.indices[i + 2] as usize,
-    ];
-    (idx, mesh.vertices(tri), 1.0 - b1 - b2)
+fn corner_points(
+    mesh: &TriangleMesh,
+    corners: [u32; 3],
+    b1: f32,
+    b2: f32,
+) -> ([usize; 3], [Vec3; 3], f32) {
+    let idx = corners.map(|i| i as usize);
+    (idx, idx.map(|i| mesh.positions[i]), 1.0 - b1 - b2)
 }
 
 /// The geometric normal `ng` turned to the side of the interpolated vertex

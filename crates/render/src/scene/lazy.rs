@@ -56,7 +56,7 @@ impl Scene {
             return None;
         }
         let albedo = self.materials[info.material as usize].constant_diffuse()?;
-        let (p, ng) = self.shapes.point_normal(info.prim, ray, lh.t, lh.uv)?;
+        let (p, ng) = self.world.point_normal(&self.shapes, lh, ray)?;
         Some(PlainDiffuse { p, ng, albedo })
     }
 
