@@ -167,6 +167,11 @@ class Converter:
         if s.args[0] not in ("gaussian", "box"):
             raise PbrtError(f"{s.loc}: filter `{s.args[0]}` is not converted")
         head["PixelFilter"] = s
+        # lumis' own "bool splat": pbrt-v4 refuses it, and lumis splats a
+        # filter wider than a pixel without it, as Mitsuba's film does.
+        if s.param("splat") not in (None, [True]):
+            raise PbrtError(f"{s.loc}: the copy splats, as Mitsuba does")
+        s.params = {k: v for k, v in s.params.items() if k[1] != "splat"}
         if s.args[0] == "gaussian":
             r = 4 * s.one("sigma", 0.5)
             if s.one("xradius", r) != r or s.one("yradius", r) != r:
