@@ -141,7 +141,7 @@ pub struct RenderArgs {
     /// Scale each sample down so no component exceeds VALUE (biased; off by default).
     #[arg(long, value_name = "VALUE")]
     pub clamp: Option<f32>,
-    /// Reconstruct by splatting each sample into every pixel the pixel filter reaches, weighted (Mitsuba's way; less noise per sample with filters wider than a pixel), instead of sampling the filter (pbrt-v4's); overrides PixelFilter's `splat`.
+    /// true: splat each sample into every pixel the pixel filter reaches, weighted (Mitsuba's way; the default for filters wider than a pixel: less noise per sample); false: sample the filter, one pixel per sample (pbrt-v4's way); overrides PixelFilter's `splat`.
     #[arg(long, value_name = "true|false", num_args = 0..=1, default_missing_value = "true")]
     pub filter_splat: Option<bool>,
     /// Ray-tracing backend: the built-in BVH, or Embree 3 (builds with `--features embree`).
