@@ -421,8 +421,7 @@ fn scene_override(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<Override>> {
             o.sampler_from(&v.extract::<String>()?, &from);
         }
         "filter_splat" => {
-            let b: bool = v.extract()?;
-            o.param("PixelFilter", "bool splat", &b.to_string(), &from);
+            o.filter_splat_from(v.extract()?, &from);
         }
         "integrator" => {
             o.integrator_from(&v.extract::<String>()?, &from);

@@ -110,7 +110,7 @@ fn matches_tungsten(
     ov.resolution(res.0, res.1);
     // One pixel per sample: the block noise below adds pixels' own
     // variances as independent, which a splatting filter's are not.
-    ov.param("PixelFilter", "bool splat", "false", "test");
+    ov.filter_splat(false);
     let l = load_path(scene, &ov).unwrap_or_else(|e| panic!("{e}"));
     assert!(
         l.warnings

@@ -59,7 +59,7 @@ fn make_reference() {
     // With the filter sampled, whatever the scene's says: independent
     // pixels, whose variances the test adds up per block.
     let mut ov = overrides();
-    ov.param("PixelFilter", "bool splat", "false", "reference");
+    ov.filter_splat_from(false, "reference");
     let l = load(DEFAULT_SCENE, &ov);
     let out = render_clamped(&l, REF_SPP, 12345);
     let cmd =

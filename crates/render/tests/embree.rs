@@ -126,7 +126,7 @@ fn same_image_as_the_builtin_bvh() {
     ov.resolution(32, 32).integrator("path");
     // One pixel per sample (the filter sampled, not splatted as the scene
     // file says), so a sample that diverges moves one pixel.
-    ov.param("PixelFilter", "bool splat", "false", "test");
+    ov.filter_splat(false);
     let mut l = load(DEFAULT_SCENE, &ov);
     let a = render_loaded(&l, 8, 5, 0);
     l.scene.use_embree(true);

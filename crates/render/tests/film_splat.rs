@@ -194,7 +194,7 @@ fn filters_wider_than_a_pixel_splat_unless_their_file_says_not() {
         &none
     ));
     let mut sampled = Overrides::default();
-    sampled.param("PixelFilter", "bool splat", "false", "--filter-splat");
+    sampled.filter_splat(false);
     assert!(!splats("", &sampled));
     assert!(!splats("PixelFilter \"triangle\"", &sampled));
 }

@@ -97,8 +97,7 @@ const PHOTONS: [(&str, &str); 3] = [
 #[test]
 fn splatted_parts_merge_to_the_whole_render() {
     let mut j = job("path", 6, &[]);
-    j.overrides
-        .param("PixelFilter", "bool splat", "true", "test");
+    j.overrides.filter_splat(true);
     merges_to_whole(j, &[&[0..1, 1..6], &[0..3, 3..4, 4..6]]);
 }
 

@@ -78,7 +78,7 @@ fn photon_resume_is_bit_identical() {
 #[test]
 fn splatted_photon_resume_is_bit_identical() {
     let mut ov = Overrides::default();
-    ov.param("PixelFilter", "bool splat", "true", "test");
+    ov.filter_splat(true);
     let l = scene_with("photon", ov);
     assert!(l.options.filter.splat);
     resume_of(&l, 4, 1);
@@ -106,7 +106,7 @@ fn vcm_resume_is_bit_identical() {
 /// the NaN is dropped, counted and located, and the image finite.
 fn with_a_nan(splat: bool) -> RenderOutcome {
     let mut ov = Overrides::default();
-    ov.param("PixelFilter", "bool splat", &splat.to_string(), "test");
+    ov.filter_splat(splat);
     let l = scene_with("path", ov);
     let s = RenderSettings {
         inject_nan: Some((5, 3, 1)),

@@ -82,6 +82,16 @@ impl Overrides {
         self
     }
 
+    /// PixelFilter `splat` (lumis' own): splat the samples (true) or
+    /// sample the filter (false).
+    pub fn filter_splat(&mut self, splat: bool) -> &mut Self {
+        self.filter_splat_from(splat, "override")
+    }
+    pub fn filter_splat_from(&mut self, splat: bool, origin: &str) -> &mut Self {
+        self.param("PixelFilter", "bool splat", &splat.to_string(), origin);
+        self
+    }
+
     /// The sampler type.
     pub fn sampler(&mut self, ty: &str) -> &mut Self {
         self.sampler_from(ty, "override")

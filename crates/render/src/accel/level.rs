@@ -5,7 +5,7 @@
 use super::mem::prefetch_lines;
 use super::tri4::{PacketRay, TriPackets, PADDING};
 use super::{Bvh, PrimInfo};
-use crate::geometry::triangle::{corner_indices, triangle_geometry_at, triangle_point_at};
+use crate::geometry::triangle::{triangle_geometry_at, triangle_point_at};
 use crate::geometry::{Aabb, Prim, Ray, Shapes, SurfaceGeom};
 use lumis_math::{Vec2, Vec3};
 
@@ -55,7 +55,7 @@ impl PrimBvh {
         let corners = prims
             .iter()
             .map(|p| match p.prim {
-                Prim::Triangle { mesh, tri } => corner_indices(&shapes.meshes[mesh as usize], tri),
+                Prim::Triangle { mesh, tri } => shapes.meshes[mesh as usize].corners(tri),
                 _ => [0; 3],
             })
             .collect();

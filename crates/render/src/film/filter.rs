@@ -91,6 +91,15 @@ impl Filter {
             / self.radius.y
     }
 
+    /// How many pixels away a pixel's samples can count, along x and y:
+    /// the nearest point of a pixel `d` away is `d - 0.5` from the centre,
+    /// within the support while that is below the radius. Zero for a box
+    /// of radius 1/2, which splatting leaves each sample's own.
+    pub fn reach(&self) -> (usize, usize) {
+        let reach = |r: f32| (r + 0.5).ceil() as usize - 1;
+        (reach(self.radius.x), reach(self.radius.y))
+    }
+
     /// [`Filter::pdf`]'s factor along `x` (else `y`) at offset `d`: the
     /// density is their product (up to rounding).
     #[inline]

@@ -20,12 +20,14 @@ impl TriangleMesh {
 
     #[inline]
     pub fn vertices(&self, tri: u32) -> [Vec3; 3] {
+        self.corners(tri).map(|i| self.positions[i as usize])
+    }
+
+    /// The vertex indices of triangle `tri`'s corners.
+    #[inline]
+    pub fn corners(&self, tri: u32) -> [u32; 3] {
         let i = 3 * tri as usize;
-        [
-            self.positions[self.indices[i] as usize],
-            self.positions[self.indices[i + 1] as usize],
-            self.positions[self.indices[i + 2] as usize],
-        ]
+        [self.indices[i], self.indices[i + 1], self.indices[i + 2]]
     }
 
     pub fn bounds(&self, tri: u32) -> Aabb {

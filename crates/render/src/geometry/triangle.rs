@@ -104,18 +104,11 @@ pub fn watertight_tail(u: f32, vv: f32, w: f32, z: [f32; 3], tmax: f32) -> Optio
 
 /// Surface geometry at barycentrics (b1, b2) of triangle `tri`.
 pub fn triangle_geometry(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> SurfaceGeom {
-    triangle_geometry_at(mesh, corner_indices(mesh, tri), b1, b2)
-}
-
-/// The vertex indices of triangle `tri`'s corners.
-#[inline]
-pub fn corner_indices(mesh: &TriangleMesh, tri: u32) -> [u32; 3] {
-    let i = 3 * tri as usize;
-    [mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]]
+    triangle_geometry_at(mesh, mesh.corners(tri), b1, b2)
 }
 
 /// [`triangle_geometry`] of the triangle whose corners are vertices
-/// `corners` (its [`corner_indices`]).
+/// `corners` ([`TriangleMesh::corners`]).
 pub fn triangle_geometry_at(
     mesh: &TriangleMesh,
     corners: [u32; 3],
@@ -162,7 +155,7 @@ pub fn triangle_geometry_at(
 /// geometric normal, as [`triangle_geometry`] gives them (area sampling
 /// needs no more).
 pub fn triangle_point(mesh: &TriangleMesh, tri: u32, b1: f32, b2: f32) -> (Vec3, Vec3) {
-    triangle_point_at(mesh, corner_indices(mesh, tri), b1, b2)
+    triangle_point_at(mesh, mesh.corners(tri), b1, b2)
 }
 
 /// [`triangle_point`] of the triangle whose corners are vertices `corners`.

@@ -588,7 +588,7 @@ pub(super) fn add_rows(
     clamp: Option<f32>,
 ) {
     for (t, splats) in rows {
-        tally.rays.add(&t.rays);
+        tally.add_rays(&t);
         tally.bad += t.bad;
         tally.first_bad = min_bad(tally.first_bad, t.first_bad);
         for s in splats {

@@ -46,7 +46,7 @@ pub(super) fn render_pass<P: Pass>(
     let f = &settings.filter;
     let b = settings.crop;
     let (w, h) = (b.width() as usize, b.height() as usize);
-    let (rx, ry) = (reach(f.radius.x), reach(f.radius.y));
+    let (rx, ry) = f.reach();
     // The last film pixel's coordinates.
     let (fw, fh) = (
         film.full_resolution.0 as i32 - 1,
@@ -143,11 +143,4 @@ pub(super) fn render_pass<P: Pass>(
     }
     add_pass_splats(pass, settings, film, indices.len() as f32);
     tally
-}
-
-/// How many pixels away (along an axis) a pixel's samples can count: the
-/// nearest point of a pixel `d` away is `d - 0.5` from the centre, within
-/// the filter's support while that is below `radius`.
-fn reach(radius: f32) -> usize {
-    (radius + 0.5).ceil() as usize - 1
 }

@@ -441,8 +441,7 @@ const MAX_SPLAT_RADIUS: f32 = 16.0;
 /// past its own pixel (a box of radius 1/2 gives the same image either way)
 /// and no further than a splat may.
 fn splats_by_default(f: &Filter) -> bool {
-    let r = f.radius.max_element();
-    r > 0.5 && r <= MAX_SPLAT_RADIUS
+    f.reach() != (0, 0) && f.radius.max_element() <= MAX_SPLAT_RADIUS
 }
 
 fn build_filter(f: &Entity, w: &mut Warnings) -> Result<Filter, Diagnostic> {

@@ -106,14 +106,18 @@ pub fn sample_mean_and_se(vals: &[f64]) -> (f64, f64) {
 /// the spread of per-pixel means (pixels are independent estimates).
 pub fn mean_and_se(film: &Film, channel: Option<usize>) -> (f64, f64) {
     assert_unsplatted(film);
-    let vals: Vec<f64> = image_means(film)
+    sample_mean_and_se(&pixel_values(film, channel))
+}
+
+/// Each pixel's value of `channel`, or its channels' average.
+fn pixel_values(film: &Film, channel: Option<usize>) -> Vec<f64> {
+    image_means(film)
         .into_iter()
         .map(|m| match channel {
             Some(c) => m[c],
             None => m.iter().sum::<f64>() / 3.0,
         })
-        .collect();
-    sample_mean_and_se(&vals)
+        .collect()
 }
 
 /// The standard errors above take pixels as independent estimates, which
@@ -130,15 +134,8 @@ fn assert_unsplatted(film: &Film) {
 /// Mean over all pixels (of `channel`, or of the channel average), of any
 /// film, splatted or not.
 pub fn image_mean(film: &Film, channel: Option<usize>) -> f64 {
-    let means = image_means(film);
-    let sum: f64 = means
-        .iter()
-        .map(|m| match channel {
-            Some(c) => m[c],
-            None => m.iter().sum::<f64>() / 3.0,
-        })
-        .sum();
-    sum / means.len() as f64
+    let vals = pixel_values(film, channel);
+    vals.iter().sum::<f64>() / vals.len() as f64
 }
 
 /// Each pixel's estimate: its samples' mean plus its splats (light paths

@@ -134,12 +134,7 @@ impl RenderFlags {
             o.sampler_from(s, "--sampler");
         }
         if let Some(b) = self.filter_splat {
-            o.param(
-                "PixelFilter",
-                "bool splat",
-                &b.to_string(),
-                "--filter-splat",
-            );
+            o.filter_splat_from(b, "--filter-splat");
         }
         if let Some(i) = &self.integrator {
             o.integrator_from(i, "--integrator");
