@@ -12,15 +12,12 @@
 //! be returned is in the list, so the answer is the kd-tree search's (of
 //! points at exactly the same distance, the lowest index), with no descent
 //! and no backtracking: a gather-ray hit reads one contiguous run of
-//! candidates, each with the four numbers the caller tests it by (a
-//! point's normal and disc, say), so a test reads nothing else. A grid
-//! built for some discs serves any smaller ones
+//! candidates. A grid built for some discs serves any smaller ones
 //! (`radiance.rs` keeps one until the discs halve in area). The caustic
 //! radius field uses it too, every sample a ball of the field's largest
 //! radius (`RadiusField::with_grid`).
 
 use super::map::dist2;
-use crate::accel::mem::prefetch_lines;
 use lumis_math::Vec3;
 
 /// A cell's side over the balls' median radius. Measured on the default
@@ -37,9 +34,6 @@ const MAX_PER_POINT: f64 = 128.0;
 
 /// Bits of a cell's key per axis.
 const AXIS_BITS: u32 = 21;
-
-/// Queries at most in one [`DiscGrid::nearest_each`].
-pub(crate) const BATCH: usize = 16;
 
 /// An unused slot's key.
 const EMPTY: u64 = u64::MAX;
@@ -72,34 +66,23 @@ pub(crate) struct DiscGrid {
     slots: Vec<Slot>,
     /// Slots taken.
     cells: usize,
-    /// The candidates, cell by cell, each cell's nearest its centre first.
-    cand: Vec<Cand>,
-}
-
-/// A listed point: its position and, in `p[3]`, the bits of its index;
-/// `data`, the caller's four numbers for it (two candidates a cache line).
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(32))]
-struct Cand {
-    p: [f32; 4],
-    data: [f32; 4],
+    /// Position of each candidate and, in `[3]`, the bits of its point's
+    /// index; cell by cell, each cell's nearest its centre first.
+    cand: Vec<[f32; 4]>,
 }
 
 impl DiscGrid {
     /// A grid over the balls of squared radii `r0_2 scale2` around `pos`,
     /// or None when a radius is not finite. It answers queries for any
     /// scale up to `scale2` (smaller balls meet fewer cells). Its cells
-    /// grow until at most `max_cells` list candidates. `data[i]` is what
-    /// [`nearest`](Self::nearest) hands its test and returns for point `i`.
+    /// grow until at most `max_cells` list candidates.
     pub(crate) fn build(
         pos: &[Vec3],
         r0_2: &[f32],
         scale2: f32,
         max_cells: usize,
-        data: &[[f32; 4]],
     ) -> Option<DiscGrid> {
         assert_eq!(pos.len(), r0_2.len(), "one radius per point");
-        assert_eq!(pos.len(), data.len(), "one datum per point");
         if pos.is_empty() {
             return Some(DiscGrid::default());
         }
@@ -174,26 +157,19 @@ impl DiscGrid {
             total += slot.end;
             slot.end = slot.start;
         }
-        let empty = Cand {
-            p: [0.0; 4],
-            data: [0.0; 4],
-        };
-        let mut cand = vec![empty; total as usize];
+        let mut cand = vec![[0.0f32; 4]; total as usize];
         g.for_each_cell(pos, &radii, |g, c, i| {
             let s = g.probe(key(c));
             let p = pos[i];
-            cand[g.slots[s].end as usize] = Cand {
-                p: [p.x, p.y, p.z, f32::from_bits(i as u32)],
-                data: data[i],
-            };
+            cand[g.slots[s].end as usize] = [p.x, p.y, p.z, f32::from_bits(i as u32)];
             g.slots[s].end += 1;
         });
         for slot in g.slots.iter().filter(|s| s.key != EMPTY) {
             let centre = g.centre(cell_of(slot.key));
             let run = &mut cand[slot.start as usize..slot.end as usize];
             run.sort_unstable_by(|a, b| {
-                (dist2(&a.p, centre).total_cmp(&dist2(&b.p, centre)))
-                    .then(a.p[3].to_bits().cmp(&b.p[3].to_bits()))
+                (dist2(a, centre).total_cmp(&dist2(b, centre)))
+                    .then(a[3].to_bits().cmp(&b[3].to_bits()))
             });
         }
         g.cand = cand;
@@ -228,13 +204,8 @@ impl DiscGrid {
     /// The slot holding `key`, or the empty one where it would go.
     #[inline]
     fn probe(&self, key: u64) -> usize {
-        self.probe_from(key, self.hash(key))
-    }
-
-    /// [`probe`](Self::probe) from `key`'s home slot `s`.
-    #[inline(always)]
-    fn probe_from(&self, key: u64, mut s: usize) -> usize {
         let mask = self.slots.len() - 1;
+        let mut s = self.hash(key);
         while self.slots[s].key != key && self.slots[s].key != EMPTY {
             s = (s + 1) & mask;
         }
@@ -279,58 +250,21 @@ impl DiscGrid {
     }
 
     /// The nearest point to `q` at squared distance `d2 < bound` for which
-    /// `accept(point, d2, data)` holds, with its data, or None, where
-    /// `accept` refuses a point outside its own ball (`d2 > r0_2 scale2`,
-    /// `scale2` at most the build's). Of points at the same distance, the
-    /// lowest index.
+    /// `accept(point, d2)` holds, or None, where `accept` refuses a point
+    /// outside its own ball (`d2 > r0_2 scale2`, `scale2` at most the
+    /// build's). Of points at the same distance, the lowest index.
+    ///
+    /// The scan stops at the first candidate farther from the cell's centre
+    /// than `q` is plus the best distance so far: it and every later one
+    /// are farther from `q` than that (the triangle inequality; a relative
+    /// margin of 1e-4 covers rounding).
     #[inline]
     pub(crate) fn nearest(
         &self,
         q: Vec3,
-        bound: f32,
-        accept: impl FnMut(u32, f32, &[f32; 4]) -> bool,
-    ) -> Option<(u32, [f32; 4])> {
-        let (c, home) = self.locate(q)?;
-        let run = self.run(c, home)?;
-        self.scan(q, c, run, bound, accept)
-    }
-
-    /// [`nearest`](Self::nearest) for each of up to [`BATCH`] queries
-    /// `qs[j]` into `out[j]`, `accept(j, point, d2, data)` testing for
-    /// query `j`: the same answers, with the queries' memory reads (the
-    /// cell's slot, then its first candidates) asked for together instead
-    /// of one miss after another.
-    pub(crate) fn nearest_each(
-        &self,
-        qs: &[Vec3],
-        bound: f32,
-        mut accept: impl FnMut(usize, u32, f32, &[f32; 4]) -> bool,
-        out: &mut [Option<(u32, [f32; 4])>],
-    ) {
-        assert!(qs.len() <= BATCH && out.len() == qs.len());
-        let mut cells = [None; BATCH];
-        for (c, &q) in cells.iter_mut().zip(qs) {
-            *c = self.locate(q);
-        }
-        let mut runs = [None; BATCH];
-        for (r, c) in runs.iter_mut().zip(&cells) {
-            *r = c.and_then(|(c, home)| {
-                let run = self.run(c, home)?;
-                prefetch_lines::<2>(self.cand.as_ptr().wrapping_add(run.0) as *const u8);
-                Some((c, run))
-            });
-        }
-        for (j, (o, r)) in out.iter_mut().zip(&runs).enumerate() {
-            *o = r.and_then(|(c, run)| {
-                self.scan(qs[j], c, run, bound, |i, d2, m| accept(j, i, d2, m))
-            });
-        }
-    }
-
-    /// The cell of `q` and its key's home slot, which is asked for (None
-    /// outside the grid, or when it lists nothing).
-    #[inline(always)]
-    fn locate(&self, q: Vec3) -> Option<([i64; 3], usize)> {
+        mut bound: f32,
+        mut accept: impl FnMut(u32, f32) -> bool,
+    ) -> Option<u32> {
         if self.cand.is_empty() {
             return None;
         }
@@ -344,49 +278,26 @@ impl DiscGrid {
             }
             c[d] = f as i64;
         }
-        let home = self.hash(key(c));
-        prefetch_lines::<1>(self.slots.as_ptr().wrapping_add(home) as *const u8);
-        Some((c, home))
-    }
-
-    /// Cell `c`'s run of candidates, probing from its home slot.
-    #[inline(always)]
-    fn run(&self, c: [i64; 3], home: usize) -> Option<(usize, usize)> {
-        let slot = self.slots[self.probe_from(key(c), home)];
-        (slot.key != EMPTY).then_some((slot.start as usize, slot.end as usize))
-    }
-
-    /// The nearest accepted candidate of cell `c`'s run to `q`.
-    ///
-    /// The scan stops at the first candidate farther from the cell's centre
-    /// than `q` is plus the best distance so far: it and every later one
-    /// are farther from `q` than that (the triangle inequality; a relative
-    /// margin of 1e-4 covers rounding).
-    #[inline(always)]
-    fn scan(
-        &self,
-        q: Vec3,
-        c: [i64; 3],
-        (a, b): (usize, usize),
-        mut bound: f32,
-        mut accept: impl FnMut(u32, f32, &[f32; 4]) -> bool,
-    ) -> Option<(u32, [f32; 4])> {
-        let q = q.to_array();
+        let slot = self.slots[self.probe(key(c))];
+        if slot.key == EMPTY {
+            return None;
+        }
+        let (a, b) = (slot.start as usize, slot.end as usize);
         let centre = self.centre(c);
         let dq = dist2(&[q[0], q[1], q[2], 0.0], centre).sqrt();
         let reach = |bound: f32| ((dq + bound.sqrt()) * (1.0 + 1e-4)).powi(2);
         let mut stop = reach(bound);
-        let mut best: Option<(u32, [f32; 4])> = None;
-        for c in &self.cand[a..b] {
-            if dist2(&c.p, centre) > stop {
+        let mut best: Option<u32> = None;
+        for pt in &self.cand[a..b] {
+            if dist2(pt, centre) > stop {
                 break;
             }
-            let d2 = dist2(&c.p, q);
-            let i = c.p[3].to_bits();
-            let nearer = d2 < bound || (d2 == bound && best.is_some_and(|b| i < b.0));
-            if nearer && accept(i, d2, &c.data) {
+            let d2 = dist2(pt, q);
+            let i = pt[3].to_bits();
+            let nearer = d2 < bound || (d2 == bound && best.is_some_and(|b| i < b));
+            if nearer && accept(i, d2) {
                 bound = d2;
-                best = Some((i, c.data));
+                best = Some(i);
                 stop = reach(bound);
             }
         }
@@ -399,8 +310,7 @@ impl DiscGrid {
     }
 
     pub(crate) fn memory_bytes(&self) -> usize {
-        self.slots.capacity() * std::mem::size_of::<Slot>()
-            + self.cand.capacity() * std::mem::size_of::<Cand>()
+        self.slots.capacity() * std::mem::size_of::<Slot>() + self.cand.capacity() * 16
     }
 }
 
@@ -477,10 +387,8 @@ mod tests {
             let ok: Vec<bool> = (0..n).map(|_| u() < 0.7).collect();
             // Built for balls 1.5x the queries' (or as large) in area.
             let s = if case % 2 == 0 { 0.6 } else { 1.0 };
-            let data: Vec<[f32; 4]> = (0..n).map(|i| [i as f32, 0.0, 0.0, 1.0]).collect();
-            let g = DiscGrid::build(&pos, &r2, 1.0, usize::MAX, &data).expect("finite radii");
+            let g = DiscGrid::build(&pos, &r2, 1.0, usize::MAX).expect("finite radii");
             let (mut found, mut queries) = (0, 0);
-            let mut batch = Vec::new();
             for k in 0..20000 {
                 // On points, beside them, at their balls' edges, anywhere.
                 let p = pos[k % n];
@@ -492,32 +400,8 @@ mod tests {
                 };
                 let bound = if k % 3 == 0 { 0.01 } else { f32::INFINITY };
                 let want = brute(&pos, &r2, s, q, bound, &ok);
-                let got = g.nearest(q, bound, |i, d2, m| {
-                    assert_eq!(m[0], i as f32, "point {i}'s data");
-                    d2 <= r2[i as usize] * s && ok[i as usize]
-                });
-                assert_eq!(
-                    got.map(|(i, m)| (i, m[0])),
-                    want.map(|i| (i, i as f32)),
-                    "case {case}, query {k} at {q:?}"
-                );
-                // A batch of this query and the ones before it answers
-                // as they do one by one.
-                batch.push(q);
-                if batch.len() == BATCH || k % 5 == 0 {
-                    let mut out = [None; BATCH];
-                    let each = |_: usize, i: u32, d2: f32, _: &[f32; 4]| {
-                        d2 <= r2[i as usize] * s && ok[i as usize]
-                    };
-                    g.nearest_each(&batch, bound, each, &mut out[..batch.len()]);
-                    for (j, &q) in batch.iter().enumerate() {
-                        let one = g.nearest(q, bound, |i, d2, _| {
-                            d2 <= r2[i as usize] * s && ok[i as usize]
-                        });
-                        assert_eq!(out[j], one, "case {case}, batch at {k}, {j}");
-                    }
-                    batch.clear();
-                }
+                let got = g.nearest(q, bound, |i, d2| d2 <= r2[i as usize] * s && ok[i as usize]);
+                assert_eq!(got, want, "case {case}, query {k} at {q:?}");
                 found += want.is_some() as usize;
                 queries += 1;
             }
@@ -539,8 +423,7 @@ mod tests {
         let r2: Vec<f32> = (0..n)
             .map(|i| if i % 50 == 0 { 0.4f32 } else { 0.02 }.powi(2))
             .collect();
-        let g =
-            DiscGrid::build(&pos, &r2, 1.0, usize::MAX, &vec![[0.0; 4]; n]).expect("finite radii");
+        let g = DiscGrid::build(&pos, &r2, 1.0, usize::MAX).expect("finite radii");
         // 41 a point; 242 with cells sized by the median radius alone.
         assert!(
             g.cand.len() <= 100 * n,
@@ -551,18 +434,17 @@ mod tests {
         for k in 0..5000 {
             let q = Vec3::new(rng.next_f32(), 0.01 * rng.next_f32(), rng.next_f32());
             let want = brute(&pos, &r2, 1.0, q, f32::INFINITY, &ok);
-            let got = g.nearest(q, f32::INFINITY, |i, d2, _| d2 <= r2[i as usize]);
-            assert_eq!(got.map(|b| b.0), want, "query {k} at {q:?}");
+            let got = g.nearest(q, f32::INFINITY, |i, d2| d2 <= r2[i as usize]);
+            assert_eq!(got, want, "query {k} at {q:?}");
         }
     }
 
     #[test]
     fn refuses_radii_that_are_not_finite() {
         let pos = [Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0)];
-        let data = [[0.0; 4]; 2];
-        assert!(DiscGrid::build(&pos, &[1.0, f32::INFINITY], 1.0, 10, &data).is_none());
-        assert!(DiscGrid::build(&pos, &[1.0, f32::NAN], 1.0, 10, &data).is_none());
-        let g = DiscGrid::build(&[], &[], 1.0, 10, &[]).expect("empty");
-        assert_eq!(g.nearest(Vec3::ZERO, f32::INFINITY, |_, _, _| true), None);
+        assert!(DiscGrid::build(&pos, &[1.0, f32::INFINITY], 1.0, 10).is_none());
+        assert!(DiscGrid::build(&pos, &[1.0, f32::NAN], 1.0, 10).is_none());
+        let g = DiscGrid::build(&[], &[], 1.0, 10).expect("empty");
+        assert_eq!(g.nearest(Vec3::ZERO, f32::INFINITY, |_, _| true), None);
     }
 }

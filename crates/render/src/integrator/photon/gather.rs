@@ -7,8 +7,6 @@
 
 use super::aim::emitted_flux;
 use super::connect;
-use super::first_hits::{exitant, facing, first_hits, First};
-use super::radiance::BATCH;
 use super::volume;
 use super::weights::{q1, q2, w1, w2, Alpha};
 use super::{Kernel, PhotonMaps, PhotonSettings, GLOBAL_RADIUS_SCALE};
@@ -125,55 +123,35 @@ pub fn shade(
     let (jitter, jc) = (sampler.get_2d(), sampler.get_1d());
     let n = m2 as f32;
     let mut gathered = Rgb::BLACK;
-    // A batch of rays at a time: their directions, their first hits
-    // together (`first_hits.rs`), then each ray on from there, in order
-    // (nothing before a ray's own turn draws from the sampler).
-    for k0 in (0..m2).step_by(BATCH) {
-        let k1 = (k0 + BATCH as u32).min(m2);
-        let mut batch: [Option<(Rgb, Gather)>; BATCH] = [const { None }; BATCH];
-        for (k, b) in (k0..k1).zip(&mut batch) {
-            let kf = k as f32;
-            let u = Vec2::new(
-                ((kf + 0.5) / n + jitter.x).fract(),
-                (kf * 0.618_034 + jitter.y).fract(),
-            );
-            let uc = (jc + kf / n).fract();
-            let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
-                continue;
-            };
-            if bs.delta {
-                continue;
-            }
-            let cos_x = bs.wi.dot(x.geom.ns).abs();
-            let g = Gather {
-                origin: x.geom.p,
-                ray: spawn_ray(x.geom.p, x.geom.ng, bs.wi),
-                medium: scene
-                    .medium_interface(x)
-                    .map_or(medium, |mi| mi.towards(bs.wi, x.geom.ng)),
-                pdf: bs.pdf,
-                q1_cos: cos_x,
-                q1_measure: delta_a,
-                alpha,
-                m2,
-                inv_j,
-            };
-            *b = Some((bs.f * (cos_x / bs.pdf), g));
+    for k in 0..m2 {
+        let kf = k as f32;
+        let u = Vec2::new(
+            ((kf + 0.5) / n + jitter.x).fract(),
+            (kf * 0.618_034 + jitter.y).fract(),
+        );
+        let uc = (jc + kf / n).fract();
+        let Some(bs) = bsdf.sample(wo, uc, u, TransportMode::Radiance) else {
+            continue;
+        };
+        if bs.delta {
+            continue;
         }
-        let len = (k1 - k0) as usize;
-        let mut firsts: [Option<First>; BATCH] = [const { None }; BATCH];
-        if !scene.has_media() {
-            let mut rays = [None; BATCH];
-            for (r, b) in rays.iter_mut().zip(&batch[..len]) {
-                *r = b.as_ref().map(|(_, g)| g.ray);
-            }
-            first_hits(ctx, &rays[..len], &mut firsts[..len]);
-        }
-        for (b, first) in batch[..len].iter().zip(&mut firsts) {
-            if let Some((weight, g)) = b {
-                gathered += *weight * trace_gather(ctx, g, first.take(), depth, sampler, rays);
-            }
-        }
+        let cos_x = bs.wi.dot(x.geom.ns).abs();
+        let weight = bs.f * (cos_x / bs.pdf);
+        let g = Gather {
+            origin: x.geom.p,
+            ray: spawn_ray(x.geom.p, x.geom.ng, bs.wi),
+            medium: scene
+                .medium_interface(x)
+                .map_or(medium, |mi| mi.towards(bs.wi, x.geom.ng)),
+            pdf: bs.pdf,
+            q1_cos: cos_x,
+            q1_measure: delta_a,
+            alpha,
+            m2,
+            inv_j,
+        };
+        gathered += weight * trace_gather(ctx, &g, depth, sampler, rays);
     }
     l + gathered / n
 }
@@ -200,12 +178,10 @@ pub(super) struct Gather {
 }
 
 /// Radiance arriving at the shading point along a gather ray, with the MIS
-/// weights of the technique that found it applied; `first`, the ray's first
-/// hit if it was found already (not in a scene with media).
+/// weights of the technique that found it applied.
 pub(super) fn trace_gather(
     ctx: &PhotonCtx,
     g: &Gather,
-    mut first: Option<First>,
     depth: u32,
     sampler: &mut Sampler,
     rays: &mut crate::integrator::RayCounts,
@@ -228,18 +204,14 @@ pub(super) fn trace_gather(
             // A plain diffuse surface that the radiance photons cover ends
             // the ray with what `global_radiance` would give there, without
             // the hit's full geometry and BSDF.
-            let First { hit, radiance } = first.take().unwrap_or_else(|| {
-                let hit = scene.intersect_lazy(&ray);
-                let pd = hit.as_ref().and_then(|l| scene.plain_diffuse(l, &ray));
-                let radiance = pd.map(|pd| radiance_photons(ctx, pd.p, pd.ng, -ray.d, pd.albedo));
-                First { hit, radiance }
-            });
-            match radiance {
-                Some(Some(v)) => return acc + t * v,
-                Some(None) => read = true,
-                None => {}
+            let lazy = scene.intersect_lazy(&ray);
+            if let Some(pd) = lazy.as_ref().and_then(|l| scene.plain_diffuse(l, &ray)) {
+                if let Some(v) = radiance_photons(ctx, pd.p, pd.ng, -ray.d, pd.albedo) {
+                    return acc + t * v;
+                }
+                read = true;
             }
-            hit.map(|l| scene.finish(l, &ray))
+            lazy.map(|l| scene.finish(l, &ray))
         };
         if scene.has_media() {
             // Free flights, and pure boundaries crossed; a gather ray that
@@ -494,7 +466,7 @@ fn global_radiance(ctx: &PhotonCtx, y: &Hit, bsdf: &SurfaceBsdf, wo: Vec3, read:
 }
 
 /// The global photons' largest radius.
-pub(super) fn global_radius(ctx: &PhotonCtx) -> f32 {
+fn global_radius(ctx: &PhotonCtx) -> f32 {
     let fixed = ctx.maps.radii.as_ref();
     fixed.map_or(ctx.maps.max_radius * GLOBAL_RADIUS_SCALE, |r| {
         r.global_max()
@@ -505,12 +477,13 @@ pub(super) fn global_radius(ctx: &PhotonCtx) -> f32 {
 /// towards `wo` from the radiance photons, if they cover `p`.
 #[inline]
 fn radiance_photons(ctx: &PhotonCtx, p: Vec3, ng: Vec3, wo: Vec3, albedo: Rgb) -> Option<Rgb> {
+    let n = if ng.dot(wo) < 0.0 { -ng } else { ng };
     let e = ctx
         .maps
         .radiance
         .as_ref()?
-        .irradiance(p, facing(ng, wo), global_radius(ctx))?;
-    Some(exitant(e, albedo))
+        .irradiance(p, n, global_radius(ctx))?;
+    Some(e * albedo * (1.0 / PI))
 }
 
 /// When the disc's radius is set by the k-th nearest photon, that photon lies

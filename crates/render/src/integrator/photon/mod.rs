@@ -13,7 +13,6 @@ pub mod budget;
 pub mod camera;
 pub mod connect;
 mod disc_grid;
-mod first_hits;
 pub mod gather;
 mod kdtree;
 pub mod map;

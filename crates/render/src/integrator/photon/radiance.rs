@@ -13,10 +13,8 @@
 //! bias of about one photon per disc that grows as the discs shrink.
 
 use super::disc_grid::DiscGrid;
-pub(crate) use super::disc_grid::BATCH;
 use super::map::{inclusive, irradiance_knn, irradiance_within, KdTree, PhotonMap};
 use super::radius_field::RadiusField;
-use crate::accel::mem::prefetch_lines;
 use lumis_math::{Rgb, Vec3};
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
@@ -115,8 +113,7 @@ impl Points {
         cache.last = None;
         let r0_2: Vec<f32> = self.normal_r0_2.iter().map(|m| m[3]).collect();
         let max_cells = cache.first_cells.map_or(usize::MAX, |c| 2 * c + 4096);
-        let g =
-            DiscGrid::build(&self.pos, &r0_2, scale2, max_cells, &self.normal_r0_2).map(Arc::new);
+        let g = DiscGrid::build(&self.pos, &r0_2, scale2, max_cells).map(Arc::new);
         if let Some(g) = &g {
             cache.first_cells.get_or_insert(g.cells());
         }
@@ -211,59 +208,26 @@ impl RadiancePhotons {
         }
         let mut bound = inclusive(max_radius * max_radius);
         let meta = &self.points.normal_r0_2;
+        // Inside the point's own disc (progressive iterations) and facing
+        // the same way.
+        let readable = |m: &[f32; 4], d2: f32| {
+            self.scale2.is_none_or(|s| d2 <= m[3] * s)
+                && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT
+        };
         if let Some(g) = &self.grid {
-            // The candidates carry the points' normals and discs.
-            let best = g.nearest(p, bound, |_, d2, m| self.readable(m, d2, n));
-            return best.map(|(i, _)| self.irradiance[i as usize]);
+            let best = g.nearest(p, bound, |i, d2| readable(&meta[i as usize], d2));
+            return best.map(|i| self.irradiance[i as usize]);
         }
         let mut best = None;
         self.points
             .tree
             .for_each_within(p.to_array(), &mut bound, |i, d2, bound| {
-                if self.readable(&meta[i as usize], d2, n) {
+                if readable(&meta[i as usize], d2) {
                     *bound = d2;
                     best = Some(i as usize);
                 }
             });
         best.map(|i| self.irradiance[i])
-    }
-
-    /// [`irradiance`](Self::irradiance) at each of up to [`BATCH`]
-    /// points `qs[j] = (p, n)` into `out[j]`: the same values, with the
-    /// lookups' memory reads overlapped (the grid's cells and candidates,
-    /// then the irradiance values found) rather than one lookup's misses
-    /// after another's.
-    pub fn irradiance_each(&self, qs: &[(Vec3, Vec3)], max_radius: f32, out: &mut [Option<Rgb>]) {
-        assert!(qs.len() <= BATCH && out.len() == qs.len());
-        let Some(g) = self.grid.as_ref().filter(|_| max_radius >= 0.0) else {
-            for (o, &(p, n)) in out.iter_mut().zip(qs) {
-                *o = self.irradiance(p, n, max_radius);
-            }
-            return;
-        };
-        let mut ps = [Vec3::ZERO; BATCH];
-        for (p, q) in ps.iter_mut().zip(qs) {
-            *p = q.0;
-        }
-        let mut found = [None; BATCH];
-        let bound = inclusive(max_radius * max_radius);
-        let readable = |j: usize, _, d2, m: &[f32; 4]| self.readable(m, d2, qs[j].1);
-        g.nearest_each(&ps[..qs.len()], bound, readable, &mut found[..qs.len()]);
-        for f in found.iter().flatten() {
-            prefetch_lines::<1>(self.irradiance.as_ptr().wrapping_add(f.0 as usize) as *const u8);
-        }
-        for (o, f) in out.iter_mut().zip(&found) {
-            *o = f.map(|(i, _)| self.irradiance[i as usize]);
-        }
-    }
-
-    /// Whether a point of normal and squared initial radius `m` may be
-    /// read at squared distance `d2` by a lookup of normal `n`: inside its
-    /// own disc (progressive iterations) and facing the same way.
-    #[inline(always)]
-    fn readable(&self, m: &[f32; 4], d2: f32, n: Vec3) -> bool {
-        self.scale2.is_none_or(|s| d2 <= m[3] * s)
-            && Vec3::new(m[0], m[1], m[2]).dot(n) > NORMAL_DOT
     }
 
     pub fn len(&self) -> usize {
@@ -349,7 +313,6 @@ mod tests {
             let kd = RadiancePhotons::fixed(&map, points.clone(), scale2).without_grid();
             assert!(rp.grid.is_some());
             let max = 0.08 * scale2.sqrt();
-            let mut batch = Vec::new();
             for k in 0..20000 {
                 let q = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
                 // Onto a face, or just off it, or anywhere in the box.
@@ -363,19 +326,6 @@ mod tests {
                 let got = rp.irradiance(q, n, r).map(|e| [e.r, e.g, e.b]);
                 let want = kd.irradiance(q, n, r).map(|e| [e.r, e.g, e.b]);
                 assert_eq!(got, want, "scale2 {scale2}, query {k} at {q:?}");
-                // Batched lookups (of this query and the ones before it,
-                // at this query's radius) answer as single ones.
-                batch.push((q, n));
-                if batch.len() == BATCH || k % 7 == 0 {
-                    let mut out = [None; BATCH];
-                    rp.irradiance_each(&batch, r, &mut out[..batch.len()]);
-                    for (j, o) in out[..batch.len()].iter().enumerate() {
-                        let o = o.map(|e| [e.r, e.g, e.b]);
-                        let single = rp.irradiance(batch[j].0, batch[j].1, r);
-                        assert_eq!(o, single.map(|e| [e.r, e.g, e.b]), "batch at {k}, {j}");
-                    }
-                    batch.clear();
-                }
                 found += want.is_some() as usize;
                 total += 1;
             }

@@ -156,9 +156,7 @@ impl RadiusField {
     pub fn with_grid(mut self) -> RadiusField {
         let pos = self.tree.positions();
         let balls = vec![self.max_radius * self.max_radius; pos.len()];
-        // Each candidate carries its sample's radius and share.
-        let data: Vec<[f32; 4]> = (0..pos.len()).map(|i| self.datum(i)).collect();
-        self.grid = DiscGrid::build(&pos, &balls, 1.0, usize::MAX, &data);
+        self.grid = DiscGrid::build(&pos, &balls, 1.0, usize::MAX);
         self
     }
 
@@ -166,7 +164,7 @@ impl RadiusField {
     /// `max_radius^2`.
     pub fn r2_at(&self, p: Vec3) -> f32 {
         self.nearest(p)
-            .map_or(self.max_radius * self.max_radius, |d| d[0])
+            .map_or(self.max_radius * self.max_radius, |i| self.r2[i])
     }
 
     /// [`r2_at`](Self::r2_at) and, from the same sample, the share of the
@@ -176,23 +174,21 @@ impl RadiusField {
     pub fn at(&self, p: Vec3, scale2: f32) -> (f32, f32) {
         match self.nearest(p) {
             None => (self.max_radius * self.max_radius, 0.0),
-            Some([r2, share, c, _]) => (r2, share / (1.0 + c * scale2)),
+            Some(i) => {
+                let share = self
+                    .share
+                    .get(i)
+                    .map_or(0.0, |&(share, c)| share / (1.0 + c * scale2));
+                (self.r2[i], share)
+            }
         }
     }
 
-    /// Sample `i`'s squared radius and share `(share, c)` (zeros where
-    /// shares were not measured).
-    fn datum(&self, i: usize) -> [f32; 4] {
-        let (share, c) = self.share.get(i).copied().unwrap_or((0.0, 0.0));
-        [self.r2[i], share, c, 0.0]
-    }
-
-    /// [`datum`](Self::datum) of the nearest sample within `max_radius`
-    /// (the grid's candidates carry it).
-    fn nearest(&self, p: Vec3) -> Option<[f32; 4]> {
+    /// The nearest sample within `max_radius`, in leaf order.
+    fn nearest(&self, p: Vec3) -> Option<usize> {
         let mut bound = inclusive(self.max_radius * self.max_radius);
         if let Some(g) = &self.grid {
-            return g.nearest(p, bound, |_, _, _| true).map(|(_, d)| d);
+            return g.nearest(p, bound, |_, _| true).map(|i| i as usize);
         }
         let mut best = None;
         self.tree
@@ -200,7 +196,7 @@ impl RadiusField {
                 *bound = d2;
                 best = Some(i as usize);
             });
-        best.map(|i| self.datum(i))
+        best
     }
 
     /// The largest radius.

@@ -122,7 +122,7 @@ pub(super) fn shade_medium(
             inv_j: 0.0,
         };
         // The phase function is sampled exactly: its weight is 1.
-        gathered += super::gather::trace_gather(ctx, &g, None, depth, sampler, rays);
+        gathered += super::gather::trace_gather(ctx, &g, depth, sampler, rays);
     }
     l + gathered / m2 as f32
 }
